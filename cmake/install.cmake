@@ -1,0 +1,36 @@
+# Install and export: libraries, public headers and the `unidist` command, plus a relocatable
+# unidistConfig.cmake so that find_package(unidist) gives unidist::core, ::adapters, ::bullet, ::ode.
+include(CMakePackageConfigHelpers)
+
+get_filename_component(_unidist_root "${CMAKE_CURRENT_LIST_DIR}/.." ABSOLUTE)
+set(UNIDIST_INSTALL_CMAKEDIR "${CMAKE_INSTALL_LIBDIR}/cmake/unidist" CACHE STRING
+    "Where unidistConfig.cmake is installed (relative to the prefix)")
+# The exported plugin targets link PkgConfig::BULLET / PkgConfig::ODE: the config re-creates them from the
+# same pkg-config modules this build used.
+if(UNIDIST_BULLET_DOUBLE)
+  set(UNIDIST_BULLET_PC_MODULE "bullet-float64>=3.24")
+else()
+  set(UNIDIST_BULLET_PC_MODULE "bullet>=3.24")
+endif()
+set(UNIDIST_ODE_PC_MODULE "ode>=0.16")
+
+install(TARGETS unidist_core unidist_adapters unidist_bullet unidist_ode unidist
+        EXPORT unidistTargets
+        ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
+        LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
+        RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR}
+        INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+foreach(_dir core/include adapters/include plugin/bullet/include plugin/ode/include)
+  install(DIRECTORY "${_unidist_root}/${_dir}/" DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
+          FILES_MATCHING PATTERN "*.h")
+endforeach()
+install(EXPORT unidistTargets NAMESPACE unidist:: FILE unidistTargets.cmake DESTINATION ${UNIDIST_INSTALL_CMAKEDIR})
+
+configure_package_config_file("${_unidist_root}/cmake/unidistConfig.cmake.in"
+                              "${PROJECT_BINARY_DIR}/unidistConfig.cmake"
+                              INSTALL_DESTINATION ${UNIDIST_INSTALL_CMAKEDIR})
+# 0.x: a minor release may break the API, so only the same major.minor is compatible.
+write_basic_package_version_file("${PROJECT_BINARY_DIR}/unidistConfigVersion.cmake"
+                                 VERSION ${PROJECT_VERSION} COMPATIBILITY SameMinorVersion)
+install(FILES "${PROJECT_BINARY_DIR}/unidistConfig.cmake" "${PROJECT_BINARY_DIR}/unidistConfigVersion.cmake"
+        DESTINATION ${UNIDIST_INSTALL_CMAKEDIR})

@@ -1,0 +1,46 @@
+// Model–model distance, signed: the one query every representation pair answers. The exact meaning of
+// every field is docs/query-contract.md (kept in step with ../shared/docs/query-contract.md).
+#pragma once
+
+#include "unidist/model.h"
+
+namespace unidist {
+
+struct DistanceOptions {
+  /// Absolute accuracy (unit: model length). The distance is within tolerance of the truth and each point
+  /// within tolerance of its surface. Negative (the default) → 1e-9 × the larger bounding-box diagonal of the
+  /// two posed models; 0 → as exact as double precision allows.
+  double tolerance = -1;
+  /// Cap on the work of iterative methods (GJK/EPA iterations, alternating steps, branch-and-bound rounds).
+  int maxIterations = 100000;
+  /// Grow A / B by a ball of this radius (a swept sphere); >= 0.
+  double inflateA = 0, inflateB = 0;
+};
+
+struct DistanceResult {
+  double distance = 0;                                  ///< signed: < 0 is −(minimum translation distance)
+  Eigen::Vector3d pointA = Eigen::Vector3d::Zero();     ///< world, on A's surface
+  Eigen::Vector3d pointB = Eigen::Vector3d::Zero();     ///< world, on B's surface; pointB − pointA = distance · normal
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();    ///< unit; A toward B, or the way B moves to separate
+  double lowerBound = -std::numeric_limits<double>::infinity();  ///< proved: lowerBound <= true distance
+  double upperBound = std::numeric_limits<double>::infinity();   ///< proved: true distance <= upperBound
+  int iterations = 0;
+  Status status = Status::Bounded;
+  const char* method = "";                              ///< which algorithm answered (for diagnostics and docs)
+};
+
+/// Tolerance used when options.tolerance < 0: 1e-9 × the larger bounding-box diagonal of the posed models
+/// (an unbounded model contributes nothing; two unbounded models give 1e-9).
+double defaultTolerance(const Model& a, const Eigen::Isometry3d& X_WA, const Model& b, const Eigen::Isometry3d& X_WB);
+
+/// Signed distance between A at pose X_WA and B at pose X_WB. Throws InputError for a pair that has no
+/// defined answer (two half-spaces) or a non-finite pose.
+DistanceResult distance(const Model& a, const Eigen::Isometry3d& X_WA, const Model& b, const Eigen::Isometry3d& X_WB,
+                        const DistanceOptions& options = {});
+
+/// The generic path alone (alternating point-to-model queries with several starts, then a branch-and-bound
+/// pass over surface cells that bounds the answer): works for any two models; exposed for tests and benchmarks.
+DistanceResult genericDistance(const Model& a, const Eigen::Isometry3d& X_WA, const Model& b,
+                               const Eigen::Isometry3d& X_WB, const DistanceOptions& options = {});
+
+}  // namespace unidist

@@ -1,0 +1,65 @@
+// The one abstract model every representation implements (the "geometry object" of Johnson & Cohen,
+// Unified Distance Queries in a Heterogeneous Model Environment, 2004). Everything is in the model's own
+// frame; a pose is given per query and never stored. Models are immutable after construction, and every
+// member function is const and safe to call from several threads at once.
+#pragma once
+
+#include "unidist/types.h"
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace unidist {
+
+enum class ModelType { Sphere, Box, Capsule, Cylinder, Cone, Torus, Plane, Mesh, PointCloud, Nurbs, Inflated };
+
+const char* toString(ModelType t);
+
+/// A piece of a model's surface for branch-and-bound searches. Every surface point of the piece lies
+/// within `radius` of `center` (proved, not estimated); `sample` is a point on the surface inside the piece.
+/// `face` and the parameter box [u0,u1]x[v0,v1] are the model's own business (used to split the cell).
+struct SurfaceCell {
+  Eigen::Vector3d center = Eigen::Vector3d::Zero();
+  double radius = 0;
+  Eigen::Vector3d sample = Eigen::Vector3d::Zero();
+  int face = 0;
+  double u0 = 0, u1 = 0, v0 = 0, v1 = 0;
+};
+
+class Model {
+ public:
+  virtual ~Model() = default;
+
+  virtual ModelType type() const = 0;
+
+  /// Closest point of the model's surface to q_M (model frame). For a solid, signedDistance < 0 when q_M is
+  /// inside. Defined for every finite q_M: where the closest point is not unique the model documents its choice.
+  virtual SurfacePoint closestPoint(const Eigen::Vector3d& q_M) const = 0;
+
+  /// Bounds in the model frame.
+  virtual Aabb localBounds() const = 0;
+  virtual BoundingSphere localBoundingSphere() const;
+
+  /// A solid has an inside (signed distances); a point cloud or an open surface does not.
+  virtual bool isSolid() const = 0;
+  /// True only when the model is a convex solid (then support() is its exact support map).
+  virtual bool isConvex() const { return false; }
+  /// Fast point-in-solid test; false for models without an inside.
+  virtual bool inside(const Eigen::Vector3d& q_M) const { return isSolid() && closestPoint(q_M).signedDistance < 0; }
+
+  /// A point of the model maximising dir·p (the support map of its convex hull). dir need not be unit.
+  virtual Eigen::Vector3d support(const Eigen::Vector3d& dir_M) const = 0;
+
+  /// Pieces covering the whole surface, for branch-and-bound; empty for unbounded models.
+  virtual std::vector<SurfaceCell> surfaceCells() const = 0;
+  /// Splits a cell into smaller ones that together cover it (appended to out).
+  virtual void splitCell(const SurfaceCell& cell, std::vector<SurfaceCell>& out) const = 0;
+
+  /// One line saying what the model is (type and sizes), for `unidist info`.
+  virtual std::string describe() const = 0;
+  /// Bytes held by the model, including any acceleration structure built so far.
+  virtual std::size_t memoryBytes() const = 0;
+};
+
+}  // namespace unidist

@@ -1,0 +1,163 @@
+// Analytic primitives: exact closest point, outward normal and signed distance for every finite query
+// point, in the primitive's own frame. Sizes must be finite and > 0 (h >= 0 for a capsule is not allowed:
+// the contract asks for h > 0); otherwise the constructor throws InputError naming the field and value.
+//
+// Defined answers where the closest point is not unique (never NaN):
+//  * sphere centre: the point (0, 0, r), normal +z;
+//  * box: ties between faces go to the face of lowest axis index, the positive side first (+x, -x, +y, ...);
+//  * capsule / cylinder on the axis: the direction +x is taken as the radial direction;
+//  * cone apex region and axis: radial direction +x; the apex itself answers with the side normal at +x;
+//  * torus: on the axis (centre line) the tube point toward +x; on the centre circle the point at +z of the tube.
+#pragma once
+
+#include "unidist/model.h"
+
+namespace unidist {
+
+/// Shared pieces of every primitive (no acceleration structure, constant memory).
+class Primitive : public Model {
+ public:
+  bool isSolid() const override { return true; }
+  bool isConvex() const override { return true; }
+  std::size_t memoryBytes() const override;
+};
+
+/// Solid ball of radius r centred at the origin.
+class Sphere final : public Primitive {
+ public:
+  explicit Sphere(double r);
+  double radius() const { return r_; }
+  ModelType type() const override { return ModelType::Sphere; }
+  SurfacePoint closestPoint(const Eigen::Vector3d& q) const override;
+  Aabb localBounds() const override;
+  bool inside(const Eigen::Vector3d& q) const override;
+  Eigen::Vector3d support(const Eigen::Vector3d& dir) const override;
+  std::vector<SurfaceCell> surfaceCells() const override;
+  void splitCell(const SurfaceCell& cell, std::vector<SurfaceCell>& out) const override;
+  std::string describe() const override;
+
+ private:
+  double r_;
+};
+
+/// Solid box [-hx,hx]x[-hy,hy]x[-hz,hz] (half extents).
+class Box final : public Primitive {
+ public:
+  explicit Box(const Eigen::Vector3d& halfExtents);
+  const Eigen::Vector3d& halfExtents() const { return h_; }
+  ModelType type() const override { return ModelType::Box; }
+  SurfacePoint closestPoint(const Eigen::Vector3d& q) const override;
+  Aabb localBounds() const override;
+  bool inside(const Eigen::Vector3d& q) const override;
+  Eigen::Vector3d support(const Eigen::Vector3d& dir) const override;
+  std::vector<SurfaceCell> surfaceCells() const override;
+  void splitCell(const SurfaceCell& cell, std::vector<SurfaceCell>& out) const override;
+  std::string describe() const override;
+
+ private:
+  Eigen::Vector3d h_;
+};
+
+/// Segment from (0,0,-h) to (0,0,+h) swept by a ball of radius r.
+class Capsule final : public Primitive {
+ public:
+  Capsule(double r, double halfLength);
+  double radius() const { return r_; }
+  double halfLength() const { return h_; }
+  ModelType type() const override { return ModelType::Capsule; }
+  SurfacePoint closestPoint(const Eigen::Vector3d& q) const override;
+  Aabb localBounds() const override;
+  bool inside(const Eigen::Vector3d& q) const override;
+  Eigen::Vector3d support(const Eigen::Vector3d& dir) const override;
+  std::vector<SurfaceCell> surfaceCells() const override;
+  void splitCell(const SurfaceCell& cell, std::vector<SurfaceCell>& out) const override;
+  std::string describe() const override;
+
+ private:
+  double r_, h_;
+};
+
+/// Solid cylinder of radius r about z, from z=-h to z=+h.
+class Cylinder final : public Primitive {
+ public:
+  Cylinder(double r, double halfHeight);
+  double radius() const { return r_; }
+  double halfHeight() const { return h_; }
+  ModelType type() const override { return ModelType::Cylinder; }
+  SurfacePoint closestPoint(const Eigen::Vector3d& q) const override;
+  Aabb localBounds() const override;
+  bool inside(const Eigen::Vector3d& q) const override;
+  Eigen::Vector3d support(const Eigen::Vector3d& dir) const override;
+  std::vector<SurfaceCell> surfaceCells() const override;
+  void splitCell(const SurfaceCell& cell, std::vector<SurfaceCell>& out) const override;
+  std::string describe() const override;
+
+ private:
+  double r_, h_;
+};
+
+/// Solid cone about z: base disc of radius r at z=-h, apex at z=+h.
+class Cone final : public Primitive {
+ public:
+  Cone(double r, double halfHeight);
+  double radius() const { return r_; }
+  double halfHeight() const { return h_; }
+  ModelType type() const override { return ModelType::Cone; }
+  SurfacePoint closestPoint(const Eigen::Vector3d& q) const override;
+  Aabb localBounds() const override;
+  bool inside(const Eigen::Vector3d& q) const override;
+  Eigen::Vector3d support(const Eigen::Vector3d& dir) const override;
+  std::vector<SurfaceCell> surfaceCells() const override;
+  void splitCell(const SurfaceCell& cell, std::vector<SurfaceCell>& out) const override;
+  std::string describe() const override;
+
+ private:
+  double r_, h_;
+};
+
+/// Solid torus about z: the points within tubeRadius of the circle of radius majorRadius in the z=0 plane.
+/// Requires 0 < tubeRadius < majorRadius. Not convex: it is the centre circle swept by a ball.
+class Torus final : public Primitive {
+ public:
+  Torus(double majorRadius, double tubeRadius);
+  double majorRadius() const { return R_; }
+  double tubeRadius() const { return r_; }
+  ModelType type() const override { return ModelType::Torus; }
+  bool isConvex() const override { return false; }
+  SurfacePoint closestPoint(const Eigen::Vector3d& q) const override;
+  Aabb localBounds() const override;
+  bool inside(const Eigen::Vector3d& q) const override;
+  Eigen::Vector3d support(const Eigen::Vector3d& dir) const override;
+  std::vector<SurfaceCell> surfaceCells() const override;
+  void splitCell(const SurfaceCell& cell, std::vector<SurfaceCell>& out) const override;
+  std::string describe() const override;
+  /// Point of the centre circle at angle theta: (R cos θ, R sin θ, 0).
+  Eigen::Vector3d circlePoint(double theta) const;
+
+ private:
+  double R_, r_;
+};
+
+/// Solid half-space n·x <= d (n unit after construction; d scaled by 1/|n|). Unbounded: its AABB is infinite,
+/// it has no surface cells, and its support map is only finite along +n (elsewhere a far point is returned).
+class Plane final : public Primitive {
+ public:
+  Plane(const Eigen::Vector3d& normal, double offset);
+  const Eigen::Vector3d& normal() const { return n_; }
+  double offset() const { return d_; }
+  ModelType type() const override { return ModelType::Plane; }
+  SurfacePoint closestPoint(const Eigen::Vector3d& q) const override;
+  Aabb localBounds() const override;
+  BoundingSphere localBoundingSphere() const override;
+  bool inside(const Eigen::Vector3d& q) const override;
+  Eigen::Vector3d support(const Eigen::Vector3d& dir) const override;
+  std::vector<SurfaceCell> surfaceCells() const override { return {}; }
+  void splitCell(const SurfaceCell&, std::vector<SurfaceCell>&) const override {}
+  std::string describe() const override;
+
+ private:
+  Eigen::Vector3d n_;
+  double d_;
+};
+
+}  // namespace unidist

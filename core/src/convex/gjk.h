@@ -1,0 +1,113 @@
+// Distance and penetration depth of two convex sets given only by their support maps (internal).
+//
+// GJK (Gilbert, Johnson & Keerthi 1988) with the signed-volume sub-distance of Montanari, Petrinic & Barbieri,
+// "Improving the GJK algorithm for faster and more reliable distance queries between convex objects",
+// ACM TOG 36(3), 2017: the closest point of a simplex to the origin is found from signed volumes/areas of the
+// simplex and its faces projected on the best-conditioned coordinate plane, which stays reliable for the
+// nearly degenerate simplices GJK produces on curved sets. When the sets overlap, EPA (van den Bergen 2001)
+// grows a polytope inside the Minkowski difference A − B toward the face closest to the origin.
+//
+// Bounds (all proved up to floating-point rounding; D = A − B, h_D(n) = max over D of n·x):
+//  * lower: for every unit n, signed distance >= −h_D(n) (a separating-axis gap when h_D(n) < 0, and
+//    −PD >= −h_D(n) because the origin's distance to ∂D is at most h_D(n) when it is inside). GJK evaluates it
+//    at n = −v/|v|, EPA at every face normal it tries.
+//  * upper: |pointA − pointB| for hull points of A and B (GJK), and −(origin's distance to the boundary of the
+//    EPA polytope) once that polytope, which lies inside D, contains the origin.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>  // cross products
+
+#include <functional>
+#include <limits>
+#include <vector>
+
+namespace unidist::detail {
+
+/// World-frame support map of a convex set: a point of the set maximising d·p (d need not be unit).
+using SupportFn = std::function<Eigen::Vector3d(const Eigen::Vector3d&)>;
+
+struct ConvexDistance {
+  double distance = 0;  ///< signed: > 0 separation, < 0 = −(penetration depth = minimum translation distance)
+  Eigen::Vector3d pointA = Eigen::Vector3d::Zero();  ///< world, on A's boundary; pointB − pointA = distance·normal
+  Eigen::Vector3d pointB = Eigen::Vector3d::Zero();  ///< world, on B's boundary
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ(); ///< unit: A toward B; when penetrating, the way B moves to separate
+  double lowerBound = 0, upperBound = 0;  ///< proved bounds on the signed distance (up to rounding)
+  int iterations = 0;                     ///< GJK iterations + EPA iterations
+  bool converged = false;                 ///< upperBound − lowerBound <= tolerance
+};
+
+/// Signed distance of two convex sets. tolerance: absolute (unit: length), > 0; 0 (or negative) means "as exact
+/// as double allows": max(1e-15 × size of A − B, a few ulps of the coordinates). maxIterations caps GJK and EPA
+/// together. Touching sets give ~0 with bounds straddling 0; degenerate (flat) sets are handled.
+ConvexDistance convexDistance(const SupportFn& a, const SupportFn& b, double tolerance, int maxIterations);
+
+// ---- Building blocks, shared by gjk.cpp, epa.cpp and the pair functions -------------------------------------
+
+/// A point of A − B and the support points it came from: w = a − b.
+struct SupportPoint {
+  Eigen::Vector3d w = Eigen::Vector3d::Zero(), a = Eigen::Vector3d::Zero(), b = Eigen::Vector3d::Zero();
+};
+
+/// Support of A − B in direction d: a = sA(d), b = sB(−d).
+SupportPoint minkowskiSupport(const SupportFn& a, const SupportFn& b, const Eigen::Vector3d& d);
+
+/// Closest point to the origin of the convex hull of 1–4 points (signed-volume sub-distance). The result keeps
+/// only the points whose barycentric weight is positive (the smallest face containing the closest point).
+struct SubSimplex {
+  int count = 0;                 ///< 1..4; 4 means the origin is inside the tetrahedron (v = 0)
+  int index[4] = {0, 0, 0, 0};   ///< indices into the input
+  double lambda[4] = {0, 0, 0, 0};
+  Eigen::Vector3d v = Eigen::Vector3d::Zero();  ///< the closest point, Σ lambda_i p_index[i]
+};
+SubSimplex closestOnSimplex(const Eigen::Vector3d* points, int n);
+
+/// Sizes used for tolerances and rounding thresholds of one query.
+struct ConvexScale {
+  double size = 0;      ///< diagonal of the bounding box of A − B (sum of the sizes of A and B)
+  double coordMag = 0;  ///< largest |coordinate| of any support point seen (rounding is relative to it)
+  double roundoff() const;  ///< absolute rounding level of a coordinate or a dot product: a few ulps of both
+};
+
+struct GjkResult {
+  SupportPoint simplex[4];
+  double lambda[4] = {0, 0, 0, 0};
+  int count = 0;
+  Eigen::Vector3d v = Eigen::Vector3d::Zero();  ///< closest point of hull(simplex) to the origin (= pointA − pointB)
+  Eigen::Vector3d pointA = Eigen::Vector3d::Zero(), pointB = Eigen::Vector3d::Zero();
+  double lowerBound = 0, upperBound = 0;  ///< on the signed distance
+  /// upperBound minus the separating-axis gap along the final direction v: bounds the sum of the depths of
+  /// pointA in A and pointB in B (each lies inside its set, at most this far from its boundary along v).
+  /// +inf when the final simplex was not checked against a support along its own direction.
+  double witnessGap = std::numeric_limits<double>::infinity();
+  int iterations = 0;
+  bool originInside = false;  ///< hull(simplex) contains the origin to working precision (overlap or touching)
+  bool converged = false;     ///< upper − lower <= tolerance and witnessGap <= tolerance
+};
+
+/// The GJK loop from one starting point of A − B. lowerBound is an already-known lower bound (or −inf).
+/// scale.coordMag is raised as support points are seen.
+GjkResult gjk(const SupportFn& a, const SupportFn& b, const SupportPoint& start, double lowerBound, double tolerance,
+              int maxIterations, ConvexScale& scale);
+
+struct EpaResult {
+  bool valid = false;         ///< a full-dimensional polytope was built (false: A − B is flat to working precision)
+  bool originInside = false;  ///< the final polytope (inside A − B) contains the origin: depth bounds below hold
+  bool separated = false;     ///< a direction n with h_D(n) < 0 was found: the sets do not overlap
+  double depth = 0;           ///< distance of the origin to the closest face (lower bound on the penetration depth)
+  double depthUpper = 0;      ///< min over tried unit n of h_D(n): upper bound on the depth when the origin is in D
+  double signedLower = 0;     ///< max over tried unit n of −h_D(n): a lower bound on the signed distance, always
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();  ///< closest face's outward normal (the way B moves)
+  Eigen::Vector3d pointA = Eigen::Vector3d::Zero(), pointB = Eigen::Vector3d::Zero();  ///< pointA − pointB ≈ depth·normal
+  /// h_D(normal) − depth for the final face: bounds the sum of the depths of pointA in A and pointB in B
+  /// (+inf when the final face was not checked against a support along its normal).
+  double witnessGap = std::numeric_limits<double>::infinity();
+  int iterations = 0;
+  bool converged = false;     ///< originInside, depthUpper − depth <= tolerance and witnessGap <= tolerance
+};
+
+/// EPA seeded with points of A − B (the GJK simplex that holds the origin, plus any others, e.g. axis supports).
+EpaResult epa(const SupportFn& a, const SupportFn& b, const std::vector<SupportPoint>& seeds, double tolerance,
+              int maxIterations, ConvexScale& scale);
+
+}  // namespace unidist::detail

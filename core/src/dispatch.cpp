@@ -1,0 +1,122 @@
+#include "dispatch.h"
+
+#include "convex/gjk.h"
+#include "generic/generic_distance.h"
+#include "pairs/analytic.h"
+#include "pairs/box_box.h"
+#include "pairs/torus_pairs.h"
+#include "unidist/primitives.h"
+
+#include <array>
+
+namespace unidist::detail {
+namespace {
+
+DistanceResult fromConvex(const ConvexDistance& c, const char* method) {
+  DistanceResult r;
+  r.distance = c.distance;
+  r.pointA = c.pointA;
+  r.pointB = c.pointB;
+  r.normal = c.normal;
+  r.lowerBound = std::min(c.lowerBound, c.distance);
+  r.upperBound = std::max(c.upperBound, c.distance);
+  r.iterations = c.iterations;
+  r.method = method;
+  return r;
+}
+
+DistanceResult convexPair(const PosedModel& a, const PosedModel& b, const QueryContext& ctx) {
+  const SupportFn supportA = [&a](const Eigen::Vector3d& d) { return a.supportWorld(d); };
+  const SupportFn supportB = [&b](const Eigen::Vector3d& d) { return b.supportWorld(d); };
+  DistanceResult r = fromConvex(convexDistance(supportA, supportB, ctx.tolerance, ctx.maxIterations), "gjk-epa");
+  settleStatus(r, ctx.tolerance);
+  return r;
+}
+
+DistanceResult boxPair(const PosedModel& a, const PosedModel& b, const QueryContext& ctx) {
+  const auto& ba = static_cast<const Box&>(a.model);
+  const auto& bb = static_cast<const Box&>(b.model);
+  DistanceResult r = fromConvex(boxBox(ba.halfExtents(), a.X_WM, bb.halfExtents(), b.X_WM, ctx.tolerance), "box-box-sat");
+  settleStatus(r, ctx.tolerance);
+  return r;
+}
+
+DistanceResult planePair(const PosedModel& a, const PosedModel& b, const QueryContext& ctx) { return planeAny(a, b, ctx); }
+
+DistanceResult capsulePair(const PosedModel& a, const PosedModel& b, const QueryContext& ctx) {
+  return capsuleCapsule(a, b, ctx);
+}
+
+DistanceResult torusPair(const PosedModel& a, const PosedModel& b, const QueryContext& ctx) {
+  return torusSolid(a, b, ctx);
+}
+
+DistanceResult dispatchByShape(const PosedModel& a, const PosedModel& b, const QueryContext& ctx);
+
+/// Sphere first: one point query is exact against any convex solid and for any separation; a penetration
+/// into a non-convex model goes on to that model's own routine.
+DistanceResult spherePair(const PosedModel& a, const PosedModel& b, const QueryContext& ctx) {
+  bool exact = false;
+  DistanceResult r = sphereAny(a, b, ctx, exact);
+  if (exact || b.model.type() == ModelType::Sphere) return r;
+  return dispatchByShape(a, b, ctx);
+}
+
+struct Cell {
+  PairFn fn = nullptr;
+  bool swap = false;  // call fn(b, a) and swap the answer back
+  const char* name = nullptr;
+};
+
+constexpr int kTypes = static_cast<int>(ModelType::Inflated) + 1;
+
+class DispatchTable {
+ public:
+  DispatchTable() {
+    using T = ModelType;
+    const T all[] = {T::Sphere, T::Box, T::Capsule, T::Cylinder, T::Cone, T::Torus, T::Mesh, T::PointCloud, T::Nurbs};
+    for (T t : all) add(T::Plane, t, &planePair, "plane-support");
+    for (T t : all) add(T::Sphere, t, &spherePair, "sphere-point-query");
+    for (T t : {T::Box, T::Capsule, T::Cylinder, T::Cone, T::Torus}) add(T::Torus, t, &torusPair, "torus-circle-search");
+    add(T::Capsule, T::Capsule, &capsulePair, "capsule-segments");
+    add(T::Box, T::Box, &boxPair, "box-box-sat");
+  }
+  const Cell& at(ModelType a, ModelType b) const { return cells_[index(a)][index(b)]; }
+
+ private:
+  static int index(ModelType t) { return static_cast<int>(t); }
+  void add(ModelType a, ModelType b, PairFn fn, const char* name) {
+    cells_[index(a)][index(b)] = {fn, false, name};
+    if (a != b) cells_[index(b)][index(a)] = {fn, true, name};
+  }
+  std::array<std::array<Cell, kTypes>, kTypes> cells_{};
+};
+
+const DispatchTable& table() {
+  static const DispatchTable instance;  // immutable after construction (thread-safe static init)
+  return instance;
+}
+
+/// The routine after the sphere shortcut: everything but the sphere row.
+DistanceResult dispatchByShape(const PosedModel& a, const PosedModel& b, const QueryContext& ctx) {
+  if (a.model.type() == ModelType::Sphere && b.model.type() == ModelType::Torus) return swapped(torusSolid(b, a, ctx));
+  if (a.model.isConvex() && b.model.isConvex()) return convexPair(a, b, ctx);
+  return genericPair(a, b, ctx);
+}
+
+}  // namespace
+
+DistanceResult dispatchPair(const PosedModel& a, const PosedModel& b, const QueryContext& ctx) {
+  if (a.model.type() == ModelType::Plane && b.model.type() == ModelType::Plane)
+    throw InputError("plane-plane pairs are not supported");
+  const Cell& cell = table().at(a.model.type(), b.model.type());
+  if (cell.fn) return cell.swap ? swapped(cell.fn(b, a, ctx)) : cell.fn(a, b, ctx);
+  return dispatchByShape(a, b, ctx);
+}
+
+const char* routineName(ModelType a, ModelType b) {
+  const Cell& cell = table().at(a, b);
+  return cell.name ? cell.name : "gjk-epa or generic";
+}
+
+}  // namespace unidist::detail

@@ -1,0 +1,95 @@
+#include "pairs/analytic.h"
+
+#include "convex/segments.h"
+#include "unidist/primitives.h"
+
+#include <cmath>
+#include <limits>
+
+namespace unidist::detail {
+
+Eigen::Vector3d anyOrthogonal(const Eigen::Vector3d& v) {
+  const Eigen::Vector3d axis = std::abs(v.x()) < 0.6 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
+  return v.cross(axis).normalized();
+}
+
+double roundingSlack(double scale) { return 16 * std::numeric_limits<double>::epsilon() * scale; }
+
+void markExact(DistanceResult& r, double scale) {
+  const double slack = roundingSlack(scale + std::abs(r.distance));
+  r.lowerBound = r.distance - slack;
+  r.upperBound = r.distance + slack;
+  r.status = Status::Certified;
+}
+
+double supportGapLowerBound(const PosedModel& a, const PosedModel& b, const Eigen::Vector3d& u) {
+  const double maxA = u.dot(a.supportWorld(u));
+  const double minB = u.dot(b.supportWorld(-u));
+  const double gap = minB - maxA;
+  return gap - roundingSlack(std::abs(maxA) + std::abs(minB));
+}
+
+DistanceResult planeAny(const PosedModel& planeModel, const PosedModel& other, const QueryContext&) {
+  const auto& plane = static_cast<const Plane&>(planeModel.model);
+  const Eigen::Vector3d n_W = planeModel.dirToWorld(plane.normal());
+  const double d_W = plane.offset() + n_W.dot(planeModel.X_WM.translation());
+  const Eigen::Vector3d lowest_W = other.supportWorld(-n_W);
+  const double s = n_W.dot(lowest_W) - d_W;
+
+  DistanceResult r;
+  r.distance = s;
+  r.normal = n_W;  // out of the half-space, toward B; also the way B moves to separate
+  r.pointB = lowest_W;
+  r.pointA = lowest_W - s * n_W;
+  r.iterations = 1;
+  r.method = "plane-support";
+  markExact(r, lowest_W.norm() + std::abs(d_W));
+  return r;
+}
+
+DistanceResult sphereAny(const PosedModel& sphereModel, const PosedModel& other, const QueryContext&, bool& exact) {
+  const double radius = static_cast<const Sphere&>(sphereModel.model).radius();
+  const Eigen::Vector3d c_W = sphereModel.X_WM.translation();
+  const SurfacePoint s = other.closestWorld(c_W);
+
+  DistanceResult r;
+  r.distance = s.signedDistance - radius;
+  // The sphere leaves along the other model's inward normal at the closest point, whichever side c is on.
+  r.normal = -s.normal;
+  r.pointB = s.point;
+  r.pointA = c_W + radius * r.normal;
+  r.iterations = 1;
+  r.method = "sphere-point-query";
+  markExact(r, c_W.norm() + radius + std::abs(s.signedDistance));
+  // For a non-convex solid, depth of the centre only bounds the penetration (another part may block the exit).
+  exact = other.model.isConvex() || r.distance >= 0;
+  return r;
+}
+
+DistanceResult capsuleCapsule(const PosedModel& a, const PosedModel& b, const QueryContext&) {
+  const auto& ca = static_cast<const Capsule&>(a.model);
+  const auto& cb = static_cast<const Capsule&>(b.model);
+  const Eigen::Vector3d a0 = a.toWorld({0, 0, -ca.halfLength()}), a1 = a.toWorld({0, 0, ca.halfLength()});
+  const Eigen::Vector3d b0 = b.toWorld({0, 0, -cb.halfLength()}), b1 = b.toWorld({0, 0, cb.halfLength()});
+  const SegmentSegmentClosest sp = closestSegmentSegment(a0, a1, b0, b1);
+  const Eigen::Vector3d between = sp.point2 - sp.point1;
+  const double axisDistance = between.norm();
+
+  DistanceResult r;
+  // Crossing axes leave no direction in the points: any unit vector orthogonal to both axes separates fastest.
+  if (axisDistance > roundingSlack(a0.norm() + b0.norm() + 1e-300)) {
+    r.normal = between / axisDistance;
+  } else {
+    const Eigen::Vector3d n = (a1 - a0).cross(b1 - b0);
+    r.normal = n.norm() > 0 ? n.normalized() : anyOrthogonal(a1 - a0);
+  }
+  r.distance = axisDistance - ca.radius() - cb.radius();
+  r.pointA = sp.point1 + ca.radius() * r.normal;
+  r.pointB = sp.point2 - cb.radius() * r.normal;
+  r.iterations = 1;
+  r.method = "capsule-segments";
+  markExact(r, a0.norm() + a1.norm() + b0.norm() + b1.norm() + ca.radius() + cb.radius());
+  return r;
+}
+
+}  // namespace unidist::detail

@@ -1,0 +1,28 @@
+// The subcommands of `unidist`. Each validates all of its input before it writes anything, so bad input leaves
+// stdout empty; errors are thrown (InputError for bad input) and reported by main() as one stderr line.
+#pragma once
+
+#include <string>
+
+namespace unidist::cli {
+
+struct DistanceArgs {
+  std::string a, b;
+  std::string poseA, poseB;
+  std::string tol;
+  std::string inflateA, inflateB;
+  // Whether each option was given: an empty value given on purpose ("--tol ''") is bad input, not "absent".
+  bool hasPoseA = false, hasPoseB = false, hasTol = false, hasInflateA = false, hasInflateB = false;
+  bool json = false;
+};
+
+struct InfoArgs {
+  std::string model;
+  bool json = false;
+};
+
+/// Both return the text for stdout; the caller writes it only when the whole command succeeded.
+std::string runDistance(const DistanceArgs& args);
+std::string runInfo(const InfoArgs& args);
+
+}  // namespace unidist::cli

@@ -1,0 +1,41 @@
+// `unidist info A [--json]`: what a model is (type, description, bounds, solidity, convexity, memory).
+#include "commands.h"
+#include "output.h"
+
+#include "unidist/adapters/load.h"
+
+namespace unidist::cli {
+
+std::string runInfo(const InfoArgs& args) {
+  std::shared_ptr<const Model> m;
+  try {
+    m = loadModel(args.model);
+  } catch (const InputError& e) {
+    throw InputError(std::string("A: ") + e.what());
+  }
+  const Aabb box = m->localBounds();
+  const BoundingSphere ball = m->localBoundingSphere();
+  const bool bounded = box.bounded();
+
+  std::string out;
+  if (args.json) {
+    out = "{\"type\": " + jsonString(toString(m->type())) + ", \"description\": " + jsonString(m->describe()) +
+          ", \"bounded\": " + (bounded ? "true" : "false") + ", \"aabb\": {\"min\": " + jsonVector(box.min) +
+          ", \"max\": " + jsonVector(box.max) + "}, \"bounding_sphere\": {\"center\": " + jsonVector(ball.center) +
+          ", \"radius\": " + jsonNumber(ball.radius) + "}, \"solid\": " + (m->isSolid() ? "true" : "false") +
+          ", \"convex\": " + (m->isConvex() ? "true" : "false") +
+          ", \"memory_bytes\": " + std::to_string(m->memoryBytes()) + "}\n";
+  } else {
+    out += "type         " + std::string(toString(m->type())) + "\n";
+    out += "model        " + m->describe() + "\n";
+    out += "aabb         min " + textVector(box.min) + "  max " + textVector(box.max) +
+           (bounded ? "" : "  (unbounded)") + "\n";
+    out += "bounding     centre " + textVector(ball.center) + "  radius " + textNumber(ball.radius) + "\n";
+    out += "solid        " + std::string(m->isSolid() ? "yes" : "no (no inside: unsigned distances)") + "\n";
+    out += "convex       " + std::string(m->isConvex() ? "yes" : "no") + "\n";
+    out += "memory       " + std::to_string(m->memoryBytes()) + " bytes\n";
+  }
+  return out;
+}
+
+}  // namespace unidist::cli

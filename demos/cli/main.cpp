@@ -1,0 +1,110 @@
+// `unidist`: command-line front end of the library. Exit codes: 0 success (also --help, --version),
+// 2 bad input or any other error, reported as exactly one stderr line "unidist: error: <what>" with nothing on
+// stdout (docs/query-contract.md, "Bad input").
+#include "commands.h"
+
+#include "unidist/bullet/version.h"
+#include "unidist/ode/version.h"
+#include "unidist/types.h"
+
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+#include <exception>
+#include <string>
+
+namespace {
+
+constexpr int kExitBadInput = 2;
+
+/// Prints the one error line (line breaks in the message become spaces) and returns the exit code.
+int fail(const std::string& message) {
+  std::string line = "unidist: error: ";
+  for (char c : message) line += (c == '\n' || c == '\r') ? ' ' : c;
+  while (!line.empty() && line.back() == ' ') line.pop_back();
+  line += '\n';
+  std::fflush(stdout);
+  std::fwrite(line.data(), 1, line.size(), stderr);
+  std::fflush(stderr);
+  return kExitBadInput;
+}
+
+int run(int argc, char** argv) {
+  using unidist::cli::DistanceArgs;
+  using unidist::cli::InfoArgs;
+
+  CLI::App app{"unidist: certified signed distance between models of any kind (primitives, meshes, point "
+               "clouds, NURBS). Contract: docs/query-contract.md.",
+               "unidist"};
+  app.set_version_flag("--version", std::string("unidist ") + UNIDIST_VERSION + " (" +
+                                        unidist::bullet::engineVersion() + "; " +
+                                        unidist::ode::engineConfiguration() + ")");
+  app.require_subcommand(1);
+
+  DistanceArgs dist;
+  CLI::App* distCmd = app.add_subcommand("distance", "Signed distance, witness points, normal and proved bounds");
+  distCmd->add_option("A", dist.a, "Model A: a file (.obj .stl .ply .xyz .unurbs.json .igs) or a primitive spec "
+                                   "(sphere:r=1, box:hx=1,hy=2,hz=3, capsule:r=,h=, cylinder:r=,h=, cone:r=,h=, "
+                                   "torus:R=,r=, plane:nx=,ny=,nz=,d=)")
+      ->required();
+  distCmd->add_option("B", dist.b, "Model B (as A)")->required();
+  CLI::Option* poseA =
+      distCmd->add_option("--pose-a", dist.poseA, "Pose of A: \"tx ty tz qw qx qy qz\" (default: identity)");
+  CLI::Option* poseB =
+      distCmd->add_option("--pose-b", dist.poseB, "Pose of B: \"tx ty tz qw qx qy qz\" (default: identity)");
+  CLI::Option* tol = distCmd->add_option(
+      "--tol", dist.tol,
+      "Absolute accuracy T >= 0 (default: 1e-9 x the larger bounding-box diagonal; 0: as exact as double allows)");
+  CLI::Option* inflateA = distCmd->add_option("--inflate-a", dist.inflateA, "Grow A by a ball of radius R >= 0");
+  CLI::Option* inflateB = distCmd->add_option("--inflate-b", dist.inflateB, "Grow B by a ball of radius R >= 0");
+  distCmd->add_flag("--json", dist.json, "Print one JSON object");
+
+  InfoArgs info;
+  CLI::App* infoCmd = app.add_subcommand("info", "What a model is: type, size, bounds, solidity, memory");
+  infoCmd->add_option("A", info.model, "A model file or a primitive spec")->required();
+  infoCmd->add_flag("--json", info.json, "Print one JSON object");
+
+  // CLI11 would call an unknown subcommand an unexpected argument; say what it is and what exists.
+  std::string known;
+  bool isKnown = false;
+  for (const CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) {
+    known += (known.empty() ? "'" : ", '") + sub->get_name() + "'";
+    isKnown = isKnown || (argc >= 2 && sub->get_name() == argv[1]);
+  }
+  if (argc >= 2 && argv[1][0] != '-' && !isKnown)
+    return fail(std::string("unknown subcommand '") + argv[1] + "' (expected " + known + "; see --help)");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::Success& e) {  // --help, --version: print and exit 0
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    if (argc < 2) return fail("missing subcommand (expected " + known + "; see --help)");
+    std::string where;  // "distance: B is required" rather than "B is required"
+    for (const CLI::App* sub : app.get_subcommands()) where = sub->get_name() + ": ";
+    return fail(where + e.what());
+  }
+
+  dist.hasPoseA = poseA->count() > 0;
+  dist.hasPoseB = poseB->count() > 0;
+  dist.hasTol = tol->count() > 0;
+  dist.hasInflateA = inflateA->count() > 0;
+  dist.hasInflateB = inflateB->count() > 0;
+  const std::string out = distCmd->parsed() ? unidist::cli::runDistance(dist) : unidist::cli::runInfo(info);
+  std::fwrite(out.data(), 1, out.size(), stdout);
+  return std::fflush(stdout) == 0 ? 0 : 1;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const unidist::InputError& e) {
+    return fail(e.what());
+  } catch (const std::exception& e) {
+    return fail(std::string("internal error: ") + e.what());
+  } catch (...) {
+    return fail("internal error (unknown exception)");
+  }
+}
