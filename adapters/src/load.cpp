@@ -4,6 +4,8 @@
 #include "unidist/adapters/load.h"
 #include "unidist/adapters/spec.h"
 
+#include "formats/readers.h"
+
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
@@ -42,10 +44,10 @@ void requireReadableFile(const std::string& path) {
 const std::vector<ModelFormat>& modelFormats() {
   // Readers arrive with their issues; until then a recognised format says so instead of guessing.
   static const std::vector<ModelFormat> kFormats = {
-      {".obj", "OBJ", nullptr},
-      {".stl", "STL", nullptr},
-      {".ply", "PLY", nullptr},
-      {".xyz", "XYZ point cloud", nullptr},
+      {".obj", "OBJ", &formats::readObj},
+      {".stl", "STL", &formats::readStl},
+      {".ply", "PLY", &formats::readPly},
+      {".xyz", "XYZ point cloud", &formats::readXyz},
       {".unurbs.json", "unidist NURBS (.unurbs.json)", nullptr},
       {".igs", "IGES", nullptr},
       {".iges", "IGES", nullptr},

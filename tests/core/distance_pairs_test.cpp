@@ -150,7 +150,7 @@ TEST(TorusPairs, SeparationMatchesDenseAngleSearch) {
 TEST(TorusPairs, RadialPenetrationIsCertified) {
   const unidist::Torus torus(1.0, 0.25);
   const unidist::Box box(Vec(0.3, 0.1, 0.1));
-  for (double delta : {1e-6, 1e-3, 0.05}) {
+  for (double delta : {0.0, 1e-6, 1e-3, 0.05}) {  // 0: touching
     Pose XB = Pose::Identity();
     XB.translation() = Vec(1.25 + 0.3 - delta, 0, 0);
     const auto r = unidist::distance(torus, Pose::Identity(), box, XB);

@@ -50,16 +50,34 @@ inline bool smoothPair(const oracle::Shape& a, const oracle::Shape& b) {
   return smooth(a) && smooth(b);
 }
 
-/// Checks a penetration answer against the direction oracle: the depth is realised along the reported normal
-/// (an independent support evaluation), it is never worse than the best direction the oracle found, and it
-/// matches the oracle to `tolerance` where the oracle converges (smooth pairs), to 1e-4 elsewhere.
+/// Checks a penetration answer against the direction oracle:
+///  * the depth is realised along the reported normal (an independent support evaluation);
+///  * it is never worse than the best direction of the oracle's dense search (a global check);
+///  * no direction near the reported normal does better (a local-optimality check at several radii, which
+///    also holds where the oracle's own refinement stalls on the ridges of polytope edges and rims);
+///  * where the oracle converges (smooth pairs) it matches it to `tolerance`.
 inline void expectPenetrationMatchesOracle(const oracle::Shape& sa, const oracle::Pose& XA, const oracle::Shape& sb,
                                            const oracle::Pose& XB, const unidist::DistanceResult& r, double tolerance) {
   const double depth = oracle::convexPenetration(sa, XA, sb, XB);
-  const double scale = depth + 1e-300;
-  EXPECT_NEAR(oracle::overlapAlong(sa, XA, sb, XB, r.normal), -r.distance, tolerance);
-  EXPECT_LE(-r.distance, depth + 1e-9 * scale);
-  EXPECT_NEAR(-r.distance, depth, smoothPair(sa, sb) ? tolerance : 1e-4 * scale);
+  const double ours = -r.distance;
+  // At a ridge (edge against rim) the overlap grows linearly with the normal's error, and EPA's normal is
+  // only as good as its last polytope face: allow 1e-6 of the depth there.
+  EXPECT_NEAR(oracle::overlapAlong(sa, XA, sb, XB, r.normal), ours, tolerance + (smoothPair(sa, sb) ? 0 : 1e-6 * depth));
+  EXPECT_LE(ours, depth + tolerance);
+  const oracle::Vec t1 = oracle::Vec::UnitX().cross(r.normal).norm() > 0.5 ? oracle::Vec(oracle::Vec::UnitX().cross(r.normal).normalized())
+                                                                          : oracle::Vec(oracle::Vec::UnitY().cross(r.normal).normalized());
+  const oracle::Vec t2 = r.normal.cross(t1);
+  double bestNearby = 1e300;
+  for (double radius : {1e-2, 1e-3, 1e-4, 1e-5, 1e-6})
+    for (int k = 0; k < 64; ++k) {
+      const double angle = 2 * M_PI * k / 64;
+      const oracle::Vec u = (r.normal + radius * (std::cos(angle) * t1 + std::sin(angle) * t2)).normalized();
+      bestNearby = std::min(bestNearby, oracle::overlapAlong(sa, XA, sb, XB, u));
+    }
+  EXPECT_GE(bestNearby, ours - tolerance);
+  if (smoothPair(sa, sb)) {
+    EXPECT_NEAR(ours, depth, tolerance);
+  }
   EXPECT_GE(r.upperBound, -depth - tolerance);  // the upper bound may not claim less depth than realised
 }
 

@@ -23,9 +23,6 @@
 #include <limits>
 #include <queue>
 #include <utility>
-#include <cstdio>
-#include <cstdlib>
-#define DBG(...) do { if (std::getenv("EPADBG")) fprintf(stderr, __VA_ARGS__); } while (0)
 
 namespace unidist::detail {
 namespace {
@@ -33,6 +30,7 @@ namespace {
 using Eigen::Vector3d;
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kFold = 64;  // a vertex this many rounding levels above a new neighbouring face is a fold
 
 struct Face {
   int v[3] = {0, 0, 0};        // counter-clockwise seen from outside: edge k runs v[k] → v[k+1]
@@ -96,22 +94,51 @@ class Polytope {
   }
 
   // Adds vertex vi, which face f0 sees, to the hull. Returns false, changing nothing, when the update would
-  // not give a valid closed polytope.
-  bool insert(int vi, int f0) {
+  // not give a valid closed polytope, or would bring a face closer to the origin than minDepth − slack (in exact
+  // arithmetic a polytope that grows around the origin never does; if rounding says otherwise, a new face's
+  // normal is untrustworthy, as happens for slivers when the new point is barely above the surface).
+  bool insert(int vi, int f0, double minDepth = -kInf) {
+    // A face whose visibility rounding decides (p nearly on its plane, or a sliver with a blurred normal) can
+    // make the visible region non-convex; retry with coarser thresholds, which leave such faces in place.
+    const double height = faces[f0].n.dot(verts[vi].w) - faces[f0].d;
+    for (double threshold = eps_; threshold < height; threshold *= 1024)
+      if (tryInsert(vi, f0, minDepth, threshold)) return true;
+    return false;
+  }
+
+ private:
+  bool tryInsert(int vi, int f0, double minDepth, double threshold) {
     const Vector3d p = verts[vi].w;
     ++pass_;
     removed_.clear();
     horizon_.clear();
+    // Walk the faces p sees, from f0 across edges (an explicit stack: the region can be large). An edge whose
+    // far face p does not see is on the horizon; each edge is crossed once, from its removed side.
     faces[f0].mark = pass_;
     removed_.push_back(f0);
-    for (int k = 0; k < 3; ++k) silhouette(faces[f0].adj[k], faces[f0].adjEdge[k], p);
+    stack_.clear();
+    for (int k = 0; k < 3; ++k) stack_.emplace_back(faces[f0].adj[k], faces[f0].adjEdge[k]);
+    while (!stack_.empty()) {
+      const auto [fi, e] = stack_.back();
+      stack_.pop_back();
+      Face& f = faces[fi];
+      if (f.mark == pass_) continue;
+      if (f.n.dot(p) - f.d <= threshold) {
+        horizon_.emplace_back(fi, e);
+        continue;
+      }
+      f.mark = pass_;
+      removed_.push_back(fi);
+      for (int k : {(e + 1) % 3, (e + 2) % 3}) stack_.emplace_back(f.adj[k], f.adjEdge[k]);
+    }
     const int m = static_cast<int>(horizon_.size());
-    if (m < 3) { DBG("insert fail: m=%d removed=%zu\n", m, removed_.size()); return false; }
+    if (m < 3) return false;
     std::vector<Face> fresh(m);
     for (int i = 0; i < m; ++i) {
       const Face& g = faces[horizon_[i].first];
       const int e = horizon_[i].second;
-      if (!makeFace(g.v[(e + 1) % 3], g.v[e], vi, fresh[i])) { DBG("insert fail: makeFace m=%d removed=%zu\n", m, removed_.size()); return false; }
+      if (!makeFace(g.v[(e + 1) % 3], g.v[e], vi, fresh[i])) return false;
+      if (fresh[i].d < minDepth - 16 * eps_) return false;
       fresh[i].adj[0] = horizon_[i].first;
       fresh[i].adjEdge[0] = e;
     }
@@ -121,14 +148,23 @@ class Polytope {
     for (int i = 0; i < m; ++i) {
       for (int j = 0; j < m; ++j) {
         if (fresh[j].v[0] != fresh[i].v[1]) continue;
-        if (next[i] >= 0) { DBG("insert fail: twice\n"); return false; }  // a vertex twice on the horizon: not a simple loop
+        if (next[i] >= 0) return false;  // a vertex twice on the horizon: not a simple loop
         next[i] = j;
       }
       if (next[i] < 0) return false;
     }
     int steps = 0;
     for (int i = next[0]; i != 0 && steps <= m; i = next[i]) ++steps;
-    if (steps != m - 1) { DBG("insert fail: loops\n"); return false; }  // several loops: the visible region was not a disc
+    if (steps != m - 1) return false;  // several loops: the visible region was not a disc
+    // Local convexity, to precision: no neighbour's far vertex clearly above a new face (the kept face across
+    // the horizon edge, and the next face of the fan). Rounding-decided visibility can otherwise fold the
+    // surface, and a folded polytope misleads every later step.
+    for (int i = 0; i < m; ++i) {
+      const Face& g = faces[horizon_[i].first];
+      const Face& F = fresh[i];
+      if (F.n.dot(verts[g.v[(horizon_[i].second + 2) % 3]].w) - F.d > kFold * eps_) return false;
+      if (F.n.dot(verts[fresh[next[i]].v[1]].w) - F.d > kFold * eps_) return false;
+    }
     for (int i = 0; i < m; ++i) {
       fresh[i].adj[1] = base + next[i];
       fresh[i].adjEdge[1] = 2;
@@ -146,7 +182,6 @@ class Polytope {
     return true;
   }
 
- private:
   bool makeFace(int a, int b, int c, Face& f) const {
     const Vector3d& wa = verts[a].w;
     const Vector3d& wb = verts[b].w;
@@ -164,26 +199,11 @@ class Polytope {
     return true;
   }
 
-  void silhouette(int fi, int e, const Vector3d& p) {
-    Face& f = faces[fi];
-    if (f.mark == pass_) return;
-    if (f.n.dot(p) - f.d <= eps_) {
-      horizon_.emplace_back(fi, e);
-      return;
-    }
-    f.mark = pass_;
-    removed_.push_back(fi);
-    const int e1 = (e + 1) % 3, e2 = (e + 2) % 3;
-    const int a1 = f.adj[e1], k1 = f.adjEdge[e1], a2 = f.adj[e2], k2 = f.adjEdge[e2];
-    silhouette(a1, k1, p);
-    silhouette(a2, k2, p);
-  }
-
   double eps_;
   Vector3d interior_ = Vector3d::Zero();
   int pass_ = 0;
   std::vector<int> removed_;
-  std::vector<std::pair<int, int>> horizon_;
+  std::vector<std::pair<int, int>> horizon_, stack_;  // (face, edge) pairs
   std::priority_queue<std::pair<double, int>, std::vector<std::pair<double, int>>, std::greater<>> heap_;
 };
 
@@ -198,27 +218,38 @@ double distanceToLine(const Vector3d& p, const Vector3d& a, const Vector3d& b) {
 
 }  // namespace
 
-EpaResult epa(const SupportFn& a, const SupportFn& b, const std::vector<SupportPoint>& seeds, double tolerance,
-              int maxIterations, ConvexScale& scale) {
+EpaResult epa(const SupportFn& a, const SupportFn& b, const std::vector<SupportPoint>& seeds, int keep,
+              double tolerance, int maxIterations, ConvexScale& scale) {
   EpaResult r;
-  r.signedLower = -kInf;
-  r.depthUpper = kInf;
   for (const SupportPoint& s : seeds) scale.coordMag = std::max(scale.coordMag, maxAbs(s));
-  // Support along unit n, recording both bounds it proves.
+  // Support along unit n, recording the bounds it proves (and the direction of the smallest h_D).
+  double minH = kInf;
+  SupportPoint bestSupport;
+  Vector3d bestDir = Vector3d::UnitZ();
   auto support = [&](const Vector3d& n) {
     const SupportPoint s = minkowskiSupport(a, b, n);
     scale.coordMag = std::max(scale.coordMag, maxAbs(s));
     const double h = n.dot(s.w);
     r.signedLower = std::max(r.signedLower, -h);
-    r.depthUpper = std::min(r.depthUpper, h);
+    if (h < minH) {
+      minH = h;
+      bestSupport = s;
+      bestDir = n;
+    }
     return s;
   };
 
+  // Seeds: the first `keep` (GJK's simplex, which may hold the origin) all, exact duplicates aside; the others
+  // only if they are not within 1e-10 of the seeds' extent of one already taken. Near-duplicate points (a
+  // needle's supports in neighbouring directions) would only make faces whose orientation is rounding.
+  Eigen::AlignedBox3d box;
+  for (const SupportPoint& s : seeds) box.extend(s.w);
+  const double dupTol = 1e-10 * box.diagonal().norm();
   std::vector<SupportPoint> cand;
-  for (const SupportPoint& s : seeds) {
+  for (int i = 0; i < static_cast<int>(seeds.size()); ++i) {
     bool dup = false;
-    for (const SupportPoint& c : cand) dup = dup || c.w == s.w;
-    if (!dup) cand.push_back(s);
+    for (const SupportPoint& c : cand) dup = dup || (i < keep ? c.w == seeds[i].w : (c.w - seeds[i].w).norm() <= dupTol);
+    if (!dup) cand.push_back(seeds[i]);
   }
   if (cand.empty()) return r;
   const double flat = 64 * scale.roundoff();  // thinner than this, D is flat to working precision
@@ -288,10 +319,39 @@ EpaResult epa(const SupportFn& a, const SupportFn& b, const std::vector<SupportP
     if (f >= 0 && height > eps) poly.insert(i, f);  // a failed insertion only leaves the polytope smaller
   }
   r.valid = true;
-  DBG("epa start: cand %zu eps %g\n", cand.size(), eps);
 
-  double lastGap = std::numeric_limits<double>::infinity();
+  // The closest point of a face's triangle to the origin, as barycentric coordinates.
+  auto closestOnFace = [&poly](const Face& F) {
+    const Vector3d pts[3] = {poly.verts[F.v[0]].w, poly.verts[F.v[1]].w, poly.verts[F.v[2]].w};
+    return closestOnSimplex(pts, 3);
+  };
+  // The face whose triangle is nearest the origin, and the distance (used when the origin is outside: the face
+  // with the smallest plane distance may then be far, e.g. with the origin beside one of its edges).
+  auto nearestFace = [&poly, &closestOnFace](double& dist) {
+    int best = -1;
+    dist = kInf;
+    for (int g = 0; g < static_cast<int>(poly.faces.size()); ++g) {
+      if (!poly.faces[g].alive) continue;
+      const double dg = closestOnFace(poly.faces[g]).v.norm();
+      if (dg < dist) {
+        dist = dg;
+        best = g;
+      }
+    }
+    return best;
+  };
+  // Upper bound on the signed distance proved by the polytope, given its closest face F by plane: −d when the
+  // origin is inside, else the distance to the polytope (any of its points is a pair of points of A and B).
+  auto upperFrom = [&](const Face& F) {
+    if (F.d >= -eps) return -F.d;
+    double dist = 0;
+    nearestFace(dist);
+    return dist;
+  };
+
+  double lastGap = kInf;
   int lastFace = -1;
+  bool stalled = false;  // stopped by rounding (nothing to add, or an expansion refused), not by the cap
   for (int it = 0; it < maxIterations; ++it) {
     const int f = poly.closest();
     if (f < 0) break;
@@ -300,19 +360,18 @@ EpaResult epa(const SupportFn& a, const SupportFn& b, const std::vector<SupportP
     const SupportPoint s = support(n);
     ++r.iterations;
     const double h = n.dot(s.w);
-    DBG("epa it %d faces %zu d=%.17g h=%.17g eps=%g\n", it, poly.faces.size(), d, h, eps);
-    if (h < -eps) {  // D lies strictly below a plane through the origin: the sets are apart
-      r.separated = true;
-      break;
-    }
-    // Stop on the gap of this face (not on the best upper bound so far), so that its witness points are
-    // certified too: their depths in A and B sum to at most h − d.
-    lastGap = h - d;
+    // Stop on the interval this face proves (not on the best bounds so far), so that its witness points are
+    // certified too: their depths in A and B sum to at most h + upper (= h − d when the origin is inside).
+    lastGap = h + upperFrom(poly.faces[f]);
     lastFace = f;
-    if (d >= -eps && h - d <= tolerance) break;
-    if (h - d <= eps) break;  // the face is on D's boundary to working precision: nothing to add
+    if (lastGap <= tolerance) break;
+    if (h < -eps) break;  // D lies strictly below a plane through the origin: apart (GJK's case)
+    // Stalled: the face is on D's boundary to working precision, or the expansion was refused.
+    stalled = h - d <= eps;
+    if (stalled) break;
     poly.verts.push_back(s);
-    if (!poly.insert(static_cast<int>(poly.verts.size()) - 1, f)) break;
+    stalled = !poly.insert(static_cast<int>(poly.verts.size()) - 1, f, d >= -eps ? d : -kInf);
+    if (stalled) break;
   }
 
   const int f = poly.closest();
@@ -321,46 +380,68 @@ EpaResult epa(const SupportFn& a, const SupportFn& b, const std::vector<SupportP
     return r;
   }
   const Face& face = poly.faces[f];
-  r.depth = face.d;
-  r.normal = face.n;
   r.originInside = face.d >= -eps;
-  // Witness: barycentric coordinates of the origin's foot point q = d·n, carried to A's and B's support points.
-  // A facet of a polytope D is triangulated into coplanar faces with equal d, and the heap may name any of them:
-  // take, among the faces whose plane holds q, the one that contains q best (largest smallest coordinate).
-  // Coordinates from a face that does not contain q would be clamped, moving the points sideways off the sets.
-  const Vector3d q = face.d * face.n;
-  int witnessFace = f;
-  double lambda[3] = {1.0 / 3, 1.0 / 3, 1.0 / 3};
-  double bestMin = -kInf;
-  for (int g = 0; g < static_cast<int>(poly.faces.size()); ++g) {
-    const Face& F = poly.faces[g];
-    if (!F.alive || F.n.dot(face.n) < 0.5 || std::abs(F.n.dot(q) - F.d) > 64 * eps) continue;
-    const Vector3d& w0 = poly.verts[F.v[0]].w;
-    const Vector3d& w1 = poly.verts[F.v[1]].w;
-    const Vector3d& w2 = poly.verts[F.v[2]].w;
-    const double c[3] = {F.n.dot((w1 - q).cross(w2 - q)), F.n.dot((w2 - q).cross(w0 - q)),
-                         F.n.dot((w0 - q).cross(w1 - q))};
-    const double sum = c[0] + c[1] + c[2];
-    if (!(sum > 0)) continue;
-    const double m = std::min({c[0], c[1], c[2]}) / sum;
-    if (m > bestMin) {
-      bestMin = m;
-      witnessFace = g;
-      for (int k = 0; k < 3; ++k) lambda[k] = c[k] / sum;
-    }
+  r.signedUpper = upperFrom(face);
+  if (f == lastFace) r.witnessGap = lastGap;
+  r.converged = r.signedUpper - r.signedLower <= tolerance && r.witnessGap <= tolerance;
+
+  // Out of iterations while still progressing: the best support direction is the better estimate (it is exact
+  // at once where the minimum translation direction is not unique, while the faces lag). Stalled by rounding:
+  // the closest face is as good as the polytope gets, and it is the better one (exact in contact, for one).
+  if (r.originInside && !r.converged && !stalled && minH < kInf) {
+    r.distance = -minH;
+    r.normal = bestDir;
+    r.pointA = bestSupport.a;
+    r.pointB = bestSupport.b;
+    return r;
   }
-  // Rounding can leave q a hair outside every face: clamp to the triangle and renormalise.
-  double total = 0;
-  for (double& l : lambda) total += (l = std::max(l, 0.0));
+  double lambda[3] = {0, 0, 0};
+  int witnessFace = f;
+  if (r.originInside) {
+    // Barycentric coordinates of the origin's foot point q = d·n, carried to A's and B's support points. A
+    // facet of a polytope D is triangulated into coplanar faces with equal d, and the heap may name any of
+    // them: take, among the faces whose plane holds q, the one that contains q best (largest smallest
+    // coordinate). Coordinates from a face not containing q would be clamped, moving the points off the sets.
+    r.distance = -face.d;
+    r.normal = face.n;
+    const Vector3d q = face.d * face.n;
+    double bestMin = -kInf;
+    for (int g = 0; g < static_cast<int>(poly.faces.size()); ++g) {
+      const Face& F = poly.faces[g];
+      if (!F.alive || F.n.dot(face.n) < 0.5 || std::abs(F.n.dot(q) - F.d) > 64 * eps) continue;
+      const Vector3d& w0 = poly.verts[F.v[0]].w;
+      const Vector3d& w1 = poly.verts[F.v[1]].w;
+      const Vector3d& w2 = poly.verts[F.v[2]].w;
+      const double c[3] = {F.n.dot((w1 - q).cross(w2 - q)), F.n.dot((w2 - q).cross(w0 - q)),
+                           F.n.dot((w0 - q).cross(w1 - q))};
+      const double sum = c[0] + c[1] + c[2];
+      if (!(sum > 0)) continue;
+      const double m = std::min({c[0], c[1], c[2]}) / sum;
+      if (m > bestMin) {
+        bestMin = m;
+        witnessFace = g;
+        for (int k = 0; k < 3; ++k) lambda[k] = std::max(c[k] / sum, 0.0);  // rounding can leave q a hair out
+      }
+    }
+  } else {
+    // The origin is just outside the polytope (contact): the polytope's closest point is the answer.
+    double dist = 0;
+    witnessFace = nearestFace(dist);
+    const SubSimplex sub = closestOnFace(poly.faces[witnessFace]);
+    for (int i = 0; i < sub.count; ++i) lambda[sub.index[i]] = sub.lambda[i];
+    r.distance = sub.v.norm();
+    r.normal = r.distance > 64 * eps ? Vector3d(-sub.v / r.distance) : poly.faces[witnessFace].n;
+  }
+  const double total = lambda[0] + lambda[1] + lambda[2];
+  if (!(total > 0)) lambda[0] = lambda[1] = lambda[2] = 1;
+  const Face& W = poly.faces[witnessFace];
   r.pointA.setZero();
   r.pointB.setZero();
-  const Face& W = poly.faces[witnessFace];
   for (int k = 0; k < 3; ++k) {
-    r.pointA += (lambda[k] / total) * poly.verts[W.v[k]].a;
-    r.pointB += (lambda[k] / total) * poly.verts[W.v[k]].b;
+    const double l = lambda[k] / (total > 0 ? total : 3.0);
+    r.pointA += l * poly.verts[W.v[k]].a;
+    r.pointB += l * poly.verts[W.v[k]].b;
   }
-  if (f == lastFace) r.witnessGap = lastGap;
-  r.converged = r.originInside && !r.separated && r.depthUpper - r.depth <= tolerance && r.witnessGap <= tolerance;
   return r;
 }
 

@@ -93,7 +93,8 @@ SubSimplex s2d(const Vector3d* p, int i0, int i1, int i2) {
       for (int k = 0; k < 3; ++k) s.lambda[k] = c[k] / sum;
       // v is the projection itself, not Σ lambda_k s_k: when the origin is 1e-10 from a face whose vertices
       // have coordinates ~1, the combination carries ~1e-16 of rounding sideways, turning v's direction by
-      // ~1e-6 rad; p0 is parallel to the face normal, whose direction is set by the (long) edges.
+      // ~1e-6 rad; p0 is parallel to the face normal, whose direction is set by the (long) edges. (The
+      // reported bound and points always come from the lambdas, i.e. from real points of A and B.)
       s.v = p0;
       return s;
     }
@@ -123,18 +124,29 @@ SubSimplex s3d(const Vector3d* p) {
   if (sameSign(det, c[0]) && sameSign(det, c[1]) && sameSign(det, c[2]) && sameSign(det, c[3])) {
     SubSimplex s;
     s.count = 4;
+    Vector3d v = Vector3d::Zero();
+    double size = 0;
     for (int k = 0; k < 4; ++k) {
       s.index[k] = k;
       s.lambda[k] = c[k] / det;
+      v += s.lambda[k] * p[k];
+      size = std::max(size, p[k].cwiseAbs().maxCoeff());
     }
-    s.v.setZero();
-    return s;
+    // A flat tetrahedron has volumes that are rounding noise, which can agree in sign by chance; then the
+    // weights do not reproduce the origin. Accept "inside" only when they do (to a few thousand ulps), else
+    // take the closest of all four faces.
+    if (v.norm() <= 4096 * std::numeric_limits<double>::epsilon() * size) {
+      s.v.setZero();
+      return s;
+    }
   }
   SubSimplex best;
   bool have = false;
   static const int face[4][3] = {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
   for (int j = 0; j < 4; ++j)
     if (!sameSign(det, c[j])) keepCloser(best, have, s2d(p, face[j][0], face[j][1], face[j][2]));
+  if (!have)
+    for (int j = 0; j < 4; ++j) keepCloser(best, have, s2d(p, face[j][0], face[j][1], face[j][2]));
   return best;
 }
 
@@ -268,36 +280,42 @@ ConvexDistance convexDistance(const SupportFn& a, const SupportFn& b, double tol
   out.iterations = g.iterations;
   lower = g.lowerBound;
   double upper = g.upperBound;
+  double witnessGap = g.witnessGap;
+  if (g.originInside && !(g.witnessGap <= tol)) {
+    // Contact or overlap with the origin in GJK's simplex: pointA = pointB lies in A ∩ B, and such a point is
+    // at most the depth (<= −lower) inside either set (a deeper point would overlap B by more than the depth).
+    witnessGap = 2 * std::max(0.0, -lower);
+  }
   bool useEpa = false;
   EpaResult e;
   if (g.originInside || (!g.converged && g.lowerBound < 0)) {
     std::vector<SupportPoint> seeds(g.simplex, g.simplex + g.count);
     seeds.insert(seeds.end(), axis.begin(), axis.end());
-    e = epa(a, b, seeds, tol, std::max(maxIterations - g.iterations, 1), scale);
+    e = epa(a, b, seeds, g.count, tol, std::max(maxIterations - g.iterations, 1), scale);
     out.iterations += e.iterations;
     lower = std::max(lower, e.signedLower);
-    if (e.valid && e.originInside && !e.separated) {
+    // EPA's answer when it proves more (always when the sets overlap: its upper bound is then negative), and
+    // in contact (GJK's simplex holds the origin): GJK's points coincide there and say nothing about the
+    // direction, while EPA's closest face is the contact plane.
+    if (e.valid && (e.signedUpper < upper || g.originInside)) {
       useEpa = true;
-      upper = std::min(upper, -e.depth);
+      upper = std::min(upper, e.signedUpper);
+      witnessGap = e.witnessGap;
     }
   }
 
-  double witnessGap = g.witnessGap;
   if (useEpa) {
-    witnessGap = e.witnessGap;
-    // Touching configuration: B moved by depth·normal touches A at (pointA, pointB + depth·normal). Split the
-    // rounding difference evenly so that pointB − pointA = distance·normal holds to the last bit possible.
-    out.distance = -e.depth;
+    out.distance = e.distance;
     out.normal = e.normal;
-    const Vector3d mid = 0.5 * (e.pointA + e.pointB);
-    out.pointA = mid - 0.5 * out.distance * out.normal;
-    out.pointB = mid + 0.5 * out.distance * out.normal;
+    out.pointA = e.pointA;
+    out.pointB = e.pointB;
   } else {
     out.distance = (g.pointB - g.pointA).norm();
+    out.pointA = g.pointA;
+    out.pointB = g.pointB;
     // The normal from v, not from pointB − pointA: the points are combinations of coordinates of the sets'
     // size, so at tiny distances their difference has a noisy direction, while v (a face or edge projection)
-    // keeps it. The points are then re-centred on the normal (a sideways move of rounding size, ~1e-12 of
-    // the sets' size at worst on sliver simplices) so that pointB − pointA = distance·normal holds.
+    // keeps it.
     if (g.v.squaredNorm() > 0) {
       out.normal = -g.v.normalized();
     } else if (centre.squaredNorm() > 0) {
@@ -305,11 +323,14 @@ ConvexDistance convexDistance(const SupportFn& a, const SupportFn& b, double tol
     } else {
       out.normal = Vector3d::UnitZ();
     }
-    const Vector3d mid = 0.5 * (g.pointA + g.pointB);
-    out.pointA = mid - 0.5 * out.distance * out.normal;
-    out.pointB = mid + 0.5 * out.distance * out.normal;
   }
+  // Re-centre the points on the normal (a sideways move of rounding size: ~1e-12 of the sets' size at worst, on
+  // sliver simplices) so that pointB − pointA = distance·normal holds to the last bits.
+  const Vector3d mid = 0.5 * (out.pointA + out.pointB);
+  out.pointA = mid - 0.5 * out.distance * out.normal;
+  out.pointB = mid + 0.5 * out.distance * out.normal;
   // The reported value lies in the proved interval; rounding can only widen the interval, never move the value.
+  out.distance += 0.0;  // −0 (a zero depth negated) prints as "-0": make it +0
   out.lowerBound = std::min(lower, out.distance);
   out.upperBound = std::max(upper, out.distance);
   out.converged = out.upperBound - out.lowerBound <= tol && witnessGap <= tol;

@@ -92,22 +92,30 @@ GjkResult gjk(const SupportFn& a, const SupportFn& b, const SupportPoint& start,
 
 struct EpaResult {
   bool valid = false;         ///< a full-dimensional polytope was built (false: A − B is flat to working precision)
-  bool originInside = false;  ///< the final polytope (inside A − B) contains the origin: depth bounds below hold
-  bool separated = false;     ///< a direction n with h_D(n) < 0 was found: the sets do not overlap
-  double depth = 0;           ///< distance of the origin to the closest face (lower bound on the penetration depth)
-  double depthUpper = 0;      ///< min over tried unit n of h_D(n): upper bound on the depth when the origin is in D
-  double signedLower = 0;     ///< max over tried unit n of −h_D(n): a lower bound on the signed distance, always
-  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();  ///< closest face's outward normal (the way B moves)
-  Eigen::Vector3d pointA = Eigen::Vector3d::Zero(), pointB = Eigen::Vector3d::Zero();  ///< pointA − pointB ≈ depth·normal
-  /// h_D(normal) − depth for the final face: bounds the sum of the depths of pointA in A and pointB in B
-  /// (+inf when the final face was not checked against a support along its normal).
+  bool originInside = false;  ///< the final polytope (inside A − B) contains the origin, to rounding
+  /// max over tried unit n of −h_D(n): a lower bound on the signed distance, whatever the configuration.
+  double signedLower = -std::numeric_limits<double>::infinity();
+  /// Origin inside the polytope: −(its distance to the polytope's boundary), since the polytope lies in D.
+  /// Origin just outside (contact, or GJK stopped short): the distance to the closest face, a realised pair of
+  /// points of A and B. Either way an upper bound on the signed distance.
+  double signedUpper = std::numeric_limits<double>::infinity();
+  /// The reported signed distance, normal (A toward B; when overlapping, the way B moves) and points
+  /// (pointB − pointA ≈ distance·normal). Overlap, converged: the closest face. Overlap, not converged: the best
+  /// support direction (−min h_D), which approaches the truth much faster than the faces where the minimum
+  /// translation direction is not unique (concentric spheres: exact at once, while faces must tile the sphere).
+  double distance = 0;
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();
+  Eigen::Vector3d pointA = Eigen::Vector3d::Zero(), pointB = Eigen::Vector3d::Zero();
+  /// Bound on the sum of the depths of pointA in A and pointB in B: h_D(n) + signedUpper for the closest face
+  /// (+inf when that face was not checked against a support along its normal n).
   double witnessGap = std::numeric_limits<double>::infinity();
   int iterations = 0;
-  bool converged = false;     ///< originInside, depthUpper − depth <= tolerance and witnessGap <= tolerance
+  bool converged = false;  ///< signedUpper − signedLower <= tolerance and witnessGap <= tolerance
 };
 
-/// EPA seeded with points of A − B (the GJK simplex that holds the origin, plus any others, e.g. axis supports).
-EpaResult epa(const SupportFn& a, const SupportFn& b, const std::vector<SupportPoint>& seeds, double tolerance,
-              int maxIterations, ConvexScale& scale);
+/// EPA seeded with points of A − B: the first `keep` are GJK's final simplex (which may hold the origin) and are
+/// all used; the others (axis supports, say) are skipped when nearly duplicating one already taken.
+EpaResult epa(const SupportFn& a, const SupportFn& b, const std::vector<SupportPoint>& seeds, int keep,
+              double tolerance, int maxIterations, ConvexScale& scale);
 
 }  // namespace unidist::detail
