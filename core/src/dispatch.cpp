@@ -4,9 +4,11 @@
 #include "generic/generic_distance.h"
 #include "pairs/analytic.h"
 #include "pairs/box_box.h"
+#include "pairs/mesh_mesh.h"
 #include "pairs/torus_pairs.h"
 #include "unidist/primitives.h"
 
+#include <algorithm>
 #include <array>
 
 namespace unidist::detail {
@@ -25,19 +27,28 @@ DistanceResult fromConvex(const ConvexDistance& c, const char* method) {
   return r;
 }
 
+// GJK/EPA converge in tens of iterations; thousands mean a degenerate overlap (coaxial, concentric) whose
+// direction is not unique: stop there with honest bounds instead of spending half a second.
+constexpr int kConvexIterationCap = 4000;
+
 DistanceResult convexPair(const PosedModel& a, const PosedModel& b, const QueryContext& ctx) {
   const SupportFn supportA = [&a](const Eigen::Vector3d& d) { return a.supportWorld(d); };
   const SupportFn supportB = [&b](const Eigen::Vector3d& d) { return b.supportWorld(d); };
-  DistanceResult r = fromConvex(convexDistance(supportA, supportB, ctx.tolerance, ctx.maxIterations), "gjk-epa");
+  const ConvexDistance c = convexDistance(supportA, supportB, ctx.tolerance, std::min(ctx.maxIterations, kConvexIterationCap));
+  DistanceResult r = fromConvex(c, "gjk-epa");
+  // Certified only when the bounds meet and the witness points are proved on their surfaces.
   settleStatus(r, ctx.tolerance);
+  if (!c.converged) r.status = Status::Bounded;
   return r;
 }
 
 DistanceResult boxPair(const PosedModel& a, const PosedModel& b, const QueryContext& ctx) {
   const auto& ba = static_cast<const Box&>(a.model);
   const auto& bb = static_cast<const Box&>(b.model);
-  DistanceResult r = fromConvex(boxBox(ba.halfExtents(), a.X_WM, bb.halfExtents(), b.X_WM, ctx.tolerance), "box-box-sat");
+  const ConvexDistance c = boxBox(ba.halfExtents(), a.X_WM, bb.halfExtents(), b.X_WM, ctx.tolerance);
+  DistanceResult r = fromConvex(c, "box-box-sat");
   settleStatus(r, ctx.tolerance);
+  if (!c.converged) r.status = Status::Bounded;
   return r;
 }
 
@@ -49,6 +60,13 @@ DistanceResult capsulePair(const PosedModel& a, const PosedModel& b, const Query
 
 DistanceResult torusPair(const PosedModel& a, const PosedModel& b, const QueryContext& ctx) {
   return torusSolid(a, b, ctx);
+}
+
+DistanceResult meshPair(const PosedModel& a, const PosedModel& b, const QueryContext& ctx) {
+  if (b.model.type() == ModelType::Mesh)
+    return meshMesh(a, b, ctx, a.model.isConvex() && b.model.isConvex() ? &convexPair : nullptr);
+  if (a.model.type() == ModelType::PointCloud) return cloudCloud(a, b, ctx);
+  return meshCloud(a, b, ctx);
 }
 
 DistanceResult dispatchByShape(const PosedModel& a, const PosedModel& b, const QueryContext& ctx);
@@ -80,6 +98,9 @@ class DispatchTable {
     for (T t : {T::Box, T::Capsule, T::Cylinder, T::Cone, T::Torus}) add(T::Torus, t, &torusPair, "torus-circle-search");
     add(T::Capsule, T::Capsule, &capsulePair, "capsule-segments");
     add(T::Box, T::Box, &boxPair, "box-box-sat");
+    add(T::Mesh, T::Mesh, &meshPair, "mesh-mesh-bvh");
+    add(T::Mesh, T::PointCloud, &meshPair, "mesh-cloud-bvh");
+    add(T::PointCloud, T::PointCloud, &meshPair, "cloud-cloud-bvh");
   }
   const Cell& at(ModelType a, ModelType b) const { return cells_[index(a)][index(b)]; }
 

@@ -174,16 +174,16 @@ TEST_F(Readers, ObjTetrahedronWithRelativeIndicesAndCornerForms) {
   const std::string text =
       "# tetrahedron\r\n"
       "v 0 0 0 1.0\r\n"
-      "v 1e0 0 0 1 0.5 0.5\r\n"      // x y z r g b
-      "v 0 +1 0 1 1 0 0\r\n"         // x y z w r g b
+      "v 1e0 0 0 1 0.5 0.5\r\n"  // x y z r g b
+      "v 0 +1 0 1 1 0 0\r\n"     // x y z w r g b
       "v 0 0 1.0 # trailing comment\r\n"
       "\r\n"
       "vt 0 0\r\nvt 1 0\r\nvt 0 1 0\r\n"
       "vn 0 0 -1\r\nvn 1 1 1\r\n"
       "vp 0.5\r\n"
-      "f -4 -2 -3\r\n"                  // 1 3 2 (z = 0 face)
-      "f 1/1 2/2 4/3\r\n"               // v/vt
-      "f 1//1 4//1 3//1\r\n"            // v//vn
+      "f -4 -2 -3\r\n"                    // 1 3 2 (z = 0 face)
+      "f 1/1 2/2 4/3\r\n"                 // v/vt
+      "f 1//1 4//1 3//1\r\n"              // v//vn
       "f -3/-1/-1 -2/-2/-1 -1/-3/-2\r\n"  // 2 3 4 with v/vt/vn, relative
       "l 1 2\r\np 3\r\n";
   const auto model = loadModel(write("tet.obj", text));
@@ -202,7 +202,8 @@ TEST_F(Readers, ObjPolygonIsAFanFromItsFirstCorner) {
   // A regular hexagon (convex): 4 triangles covering exactly its area; an open surface.
   std::string text;
   const double pi = std::acos(-1.0);
-  for (int k = 0; k < 6; ++k) text += "v " + std::to_string(std::cos(k * pi / 3)) + " " + std::to_string(std::sin(k * pi / 3)) + " 0\n";
+  for (int k = 0; k < 6; ++k)
+    text += "v " + std::to_string(std::cos(k * pi / 3)) + " " + std::to_string(std::sin(k * pi / 3)) + " 0\n";
   text += "f 1 2 3 4 5 6\n";
   const auto model = loadModel(write("hexagon.obj", text));
   const TriangleMesh& m = asMesh(model);
@@ -224,7 +225,8 @@ TEST_F(Readers, ObjFacesMayComeBeforeTheirVertices) {
   for (const auto& q : kCubeQuads)
     text += "f " + std::to_string(q[0] + 1) + " " + std::to_string(q[1] + 1) + " " + std::to_string(q[2] + 1) + " " +
             std::to_string(q[3] + 1) + "\n";
-  for (const auto& v : kCube) text += "v " + std::to_string(v[0]) + " " + std::to_string(v[1]) + " " + std::to_string(v[2]) + "\n";
+  for (const auto& v : kCube)
+    text += "v " + std::to_string(v[0]) + " " + std::to_string(v[1]) + " " + std::to_string(v[2]) + "\n";
   expectUnitCube(loadModel(write("forward.obj", text)));
 }
 
@@ -237,7 +239,8 @@ TEST_F(Readers, ObjCountLineAsInFclMeshes) {
 TEST_F(Readers, ObjOpenSurfaceIsNotASolid) {
   // The cube without its top: five quads, boundary edges.
   std::string text;
-  for (const auto& v : kCube) text += "v " + std::to_string(v[0]) + " " + std::to_string(v[1]) + " " + std::to_string(v[2]) + "\n";
+  for (const auto& v : kCube)
+    text += "v " + std::to_string(v[0]) + " " + std::to_string(v[1]) + " " + std::to_string(v[2]) + "\n";
   for (int f = 0; f < 6; ++f)
     if (f != 1)
       text += "f " + std::to_string(kCubeQuads[f][0] + 1) + " " + std::to_string(kCubeQuads[f][1] + 1) + " " +
@@ -281,7 +284,8 @@ TEST_F(Readers, MalformedObj) {
   expectLineError("continuation.obj", "v 0 0 \\\n0\n" + tri, 1, "line continuation");
   expectLineError("no_faces.obj", "# points only\n" + tri, 4, "no faces");
   expectLineError("comments_only.obj", "# nothing\n\n# here\n", 3, "no faces");
-  expectLineError("binary.obj", std::string("v 0 0 0\n\x01\x02\x00\xff", 12) + "\n", 2, "unknown OBJ statement '\\x01\\x02\\x00\\xFF'");
+  expectLineError("binary.obj", std::string("v 0 0 0\n\x01\x02\x00\xff", 12) + "\n", 2,
+                  "unknown OBJ statement '\\x01\\x02\\x00\\xFF'");
   // Valid syntax, but nothing with an area is left: the model's message, prefixed with the file.
   const std::string path = write("flat.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n");
   const std::string msg = errorOf([&] { loadModel(path); });
@@ -323,8 +327,10 @@ TEST_F(Readers, StlAsciiCube) {
   expectUnitCube(loadModel(write("cube.stl", cubeStlAscii())));
   expectUnitCube(loadModel(write("cube_upper.stl", cubeStlAscii(true))));
   // Keywords split over lines differently, and two solids in one file.
-  std::string text = "solid\nfacet normal 0 0 -1 outer loop vertex 0 0 0 vertex 0 1 0 vertex 1 0 0 endloop endfacet\nendsolid\n"
-                     "solid second\nfacet normal 0 0 0\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 0 1\nendloop\nendfacet\nendsolid second";
+  std::string text =
+      "solid\nfacet normal 0 0 -1 outer loop vertex 0 0 0 vertex 0 1 0 vertex 1 0 0 endloop endfacet\nendsolid\n"
+      "solid second\nfacet normal 0 0 0\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 0 "
+      "1\nendloop\nendfacet\nendsolid second";
   const auto mModel = loadModel(write("two.stl", text));
   const TriangleMesh& m = asMesh(mModel);
   EXPECT_EQ(m.triangles().size(), 2u);
@@ -371,16 +377,19 @@ TEST_F(Readers, MalformedAsciiStl) {
   const std::string head = "solid t\nfacet normal 0 0 1\nouter loop\n";
   const std::string tail = "endloop\nendfacet\nendsolid t\n";
   const std::string v3 = "vertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\n";
-  expectLineError("junk.stl", head + "vertex 0 0 0\nvertex 1 0 zero\nvertex 0 1 0\n" + tail, 5, "'zero' is not a number");
+  expectLineError("junk.stl", head + "vertex 0 0 0\nvertex 1 0 zero\nvertex 0 1 0\n" + tail, 5,
+                  "'zero' is not a number");
   expectLineError("nan.stl", head + "vertex 0 0 0\nvertex nan 0 0\nvertex 0 1 0\n" + tail, 5, "'nan' is not a number");
   expectLineError("suffix.stl", head + "vertex 0 0 0\nvertex 1.0abc 0 0\nvertex 0 1 0\n" + tail, 5, "'1.0abc'");
   expectLineError("normal.stl", "solid t\nfacet normal 0 x 1\nouter loop\n" + v3 + tail, 2, "'x' is not a number");
   expectLineError("four.stl", head + v3 + "vertex 1 1 0\n" + tail, 7, "more than 3 vertices");
-  expectLineError("two.stl", head + "vertex 0 0 0\nvertex 1 0 0\n" + tail, 6, "expected 'vertex' (a facet has exactly 3)");
+  expectLineError("two.stl", head + "vertex 0 0 0\nvertex 1 0 0\n" + tail, 6,
+                  "expected 'vertex' (a facet has exactly 3)");
   expectLineError("no_loop.stl", "solid t\nfacet normal 0 0 1\n" + v3 + tail, 3, "expected 'outer'");
   expectLineError("no_endsolid.stl", head + v3 + "endloop\nendfacet\n", 8, "'endsolid' is missing");
   expectLineError("cut.stl", head + "vertex 0 0 0\nvertex 1 0", 5, "end of file where vertex z was expected");
-  expectLineError("keyword.stl", "solid t\nfacet normal 0 0 1\nouter loop\n" + v3 + "endloop\nendfacet\nfacets\nendsolid\n", 9,
+  expectLineError("keyword.stl",
+                  "solid t\nfacet normal 0 0 1\nouter loop\n" + v3 + "endloop\nendfacet\nfacets\nendsolid\n", 9,
                   "expected 'facet' or 'endsolid', found 'facets'");
   expectLineError("empty_solid.stl", "solid nothing\nendsolid nothing\n", 2, "no facets");
   expectLineError("after.stl", head + v3 + tail + "garbage\n", 10, "expected 'solid' or the end of the file");
@@ -392,8 +401,9 @@ enum class PlyEncoding { Ascii, Little, Big };
 
 /// The cube as PLY with quads, colours (ignored) and an extra element, in any encoding.
 std::string cubePly(PlyEncoding enc, const char* coordType = "float", const char* indexType = "int") {
-  const char* format = enc == PlyEncoding::Ascii ? "ascii" : enc == PlyEncoding::Little ? "binary_little_endian"
-                                                                                          : "binary_big_endian";
+  const char* format = enc == PlyEncoding::Ascii    ? "ascii"
+                       : enc == PlyEncoding::Little ? "binary_little_endian"
+                                                    : "binary_big_endian";
   std::string s = std::string("ply\nformat ") + format + " 1.0\ncomment unit cube\nobj_info test\n" +
                   "element vertex 8\nproperty " + coordType + " x\nproperty " + coordType + " y\nproperty " +
                   coordType + " z\nproperty uchar red\nproperty uchar green\nproperty uchar blue\n" +
@@ -434,9 +444,10 @@ TEST_F(Readers, PlyCubeInEveryEncoding) {
 }
 
 TEST_F(Readers, PlyWithoutFacesIsAPointCloudWithNormals) {
-  const std::string header = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
-                             "property float z\nproperty float nx\nproperty float ny\nproperty float nz\n"
-                             "element face 0\nproperty list uchar int vertex_indices\nend_header\n";
+  const std::string header =
+      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+      "property float z\nproperty float nx\nproperty float ny\nproperty float nz\n"
+      "element face 0\nproperty list uchar int vertex_indices\nend_header\n";
   const auto cModel = loadModel(write("cloud.ply", header + "1 2 3 0 0 2\n-1 0.5 1e-3 1 0 0\n0 0 0 0 0 0\n"));
   const PointCloud& c = asCloud(cModel);
   ASSERT_EQ(c.points().size(), 3u);
@@ -450,9 +461,11 @@ TEST_F(Readers, PlyWithoutFacesIsAPointCloudWithNormals) {
   Bytes b;
   b.big = true;
   b.put<double>(0.25).put<double>(-0.5).put<double>(0.125).put<double>(1).put<double>(2).put<double>(3);
-  const auto dModel = loadModel(write(
-      "cloud_be.ply", "ply\nformat binary_big_endian 1.0\nelement vertex 2\nproperty double x\nproperty double y\n"
-                      "property double z\nend_header\n" + b.data));
+  const auto dModel =
+      loadModel(write("cloud_be.ply",
+                      "ply\nformat binary_big_endian 1.0\nelement vertex 2\nproperty double x\nproperty double y\n"
+                      "property double z\nend_header\n" +
+                          b.data));
   const PointCloud& d = asCloud(dModel);
   ASSERT_EQ(d.points().size(), 2u);
   EXPECT_EQ(d.points()[0], Eigen::Vector3d(0.25, -0.5, 0.125));
@@ -462,9 +475,11 @@ TEST_F(Readers, PlyWithoutFacesIsAPointCloudWithNormals) {
   // Binary little endian with normals.
   Bytes l;
   l.put<float>(1).put<float>(2).put<float>(3).put<float>(0).put<float>(3).put<float>(4);
-  const auto eModel = loadModel(write(
-      "cloud_le.ply", "ply\nformat binary_little_endian 1.0\nelement vertex 1\nproperty float x\nproperty float y\n"
-                      "property float z\nproperty float nx\nproperty float ny\nproperty float nz\nend_header\n" + l.data));
+  const auto eModel =
+      loadModel(write("cloud_le.ply",
+                      "ply\nformat binary_little_endian 1.0\nelement vertex 1\nproperty float x\nproperty float y\n"
+                      "property float z\nproperty float nx\nproperty float ny\nproperty float nz\nend_header\n" +
+                          l.data));
   const PointCloud& e = asCloud(eModel);
   EXPECT_EQ(e.points()[0], Eigen::Vector3d(1, 2, 3));
   ASSERT_EQ(e.normals().size(), 1u);
@@ -483,35 +498,41 @@ TEST_F(Readers, MalformedPlyHeader) {
   expectLineError("version.ply", "ply\nformat ascii 2.0\nend_header\n", 2, "unsupported PLY version '2.0'");
   expectLineError("no_format.ply", "ply\nelement vertex 1\nproperty float x\nend_header\n0\n", 4, "no 'format' line");
   // No end_header: the first data line is reported, with the likely cause.
-  expectLineError("no_end.ply",
-                  "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n" + tri,
-                  7, "is 'end_header' missing?");
+  expectLineError(
+      "no_end.ply",
+      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n" + tri, 7,
+      "is 'end_header' missing?");
   expectLineError("no_end_eof.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n", 4,
                   "the 'end_header' line is missing");
   expectLineError("type.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float3 x\nend_header\n", 4,
                   "unknown property type 'float3'");
   expectLineError("list_count.ply",
                   "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
-                  "element face 1\nproperty list float int vertex_indices\nend_header\n" + tri,
+                  "element face 1\nproperty list float int vertex_indices\nend_header\n" +
+                      tri,
                   8, "unsupported list count type 'float'");
   expectLineError("list_double.ply",
                   "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
-                  "element face 1\nproperty list double int vertex_indices\nend_header\n" + tri,
+                  "element face 1\nproperty list double int vertex_indices\nend_header\n" +
+                      tri,
                   8, "unsupported list count type 'double'");
   expectLineError("float_indices.ply",
                   "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
-                  "element face 1\nproperty list uchar float vertex_indices\nend_header\n" + tri,
+                  "element face 1\nproperty list uchar float vertex_indices\nend_header\n" +
+                      tri,
                   8, "vertex indices must be an integer type");
   expectLineError("scalar_indices.ply",
                   "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
-                  "element face 1\nproperty int vertex_indices\nend_header\n" + tri,
+                  "element face 1\nproperty int vertex_indices\nend_header\n" +
+                      tri,
                   8, "must be a list");
   expectLineError("list_x.ply",
                   "ply\nformat ascii 1.0\nelement vertex 3\nproperty list uchar float x\nproperty float y\n"
                   "property float z\nend_header\n1 0 0 0\n1 1 0 0\n1 0 1 0\n",
                   4, "vertex property 'x' is a list");
-  expectLineError("no_z.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nend_header\n0 0\n",
-                  3, "no 'z' property");
+  expectLineError("no_z.ply",
+                  "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nend_header\n0 0\n", 3,
+                  "no 'z' property");
   expectLineError("no_vertex.ply", "ply\nformat ascii 1.0\nelement point 1\nproperty float x\nend_header\n0\n", 5,
                   "no 'vertex' element");
   expectLineError("partial_normals.ply",
@@ -529,9 +550,20 @@ TEST_F(Readers, MalformedPlyHeader) {
   expectLineError("count.ply", "ply\nformat ascii 1.0\nelement vertex -1\n", 3, "out of range");
   expectLineError("count_text.ply", "ply\nformat ascii 1.0\nelement vertex many\n", 3, "'many' is not an integer");
   expectLineError("orphan.ply", "ply\nformat ascii 1.0\nproperty float x\n", 3, "'property' before any 'element'");
-  expectLineError("zero_vertices.ply",
-                  "ply\nformat ascii 1.0\nelement vertex 0\nproperty float x\nproperty float y\nproperty float z\nend_header\n",
-                  3, "0 entries");
+  expectLineError("no_properties.ply",
+                  "ply\nformat binary_little_endian 1.0\nelement vertex 1\nproperty float x\nproperty float y\n"
+                  "property float z\nelement nothing 4000000000\nend_header\n" +
+                      std::string(12, '\0'),
+                  7, "element 'nothing' has entries but no properties");
+  expectLineError("strips.ply",
+                  "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+                  "element tristrips 1\nproperty list int int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n"
+                  "3 0 1 2\n",
+                  7, "triangle strips ('tristrips') are not supported");
+  expectLineError(
+      "zero_vertices.ply",
+      "ply\nformat ascii 1.0\nelement vertex 0\nproperty float x\nproperty float y\nproperty float z\nend_header\n", 3,
+      "0 entries");
 }
 
 TEST_F(Readers, MalformedAsciiPlyData) {
@@ -546,22 +578,27 @@ TEST_F(Readers, MalformedAsciiPlyData) {
   expectLineError("list_range.ply", h + "0 0 0\n1 0 0\n0 1 0\n256 0 1 2\n", 13, "out of range [0, 255]");
   expectLineError("two_corners.ply", h + "0 0 0\n1 0 0\n0 1 0\n2 0 1\n", 13, "face 0 has 2 vertices");
   // The header lies: it declares more vertices than there are (the face line is read as a vertex) ...
-  const std::string more = "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
-                           "element face 1\nproperty list uchar int vertex_indices\nend_header\n";
-  expectLineError("lie_more.ply", more + "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", 13, "does the header's count match the data?");
+  const std::string more =
+      "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+      "element face 1\nproperty list uchar int vertex_indices\nend_header\n";
+  expectLineError("lie_more.ply", more + "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", 13,
+                  "does the header's count match the data?");
   // ... or fewer faces than there are, or fewer vertices, or more faces.
   expectLineError("lie_extra.ply", h + "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n3 0 2 1\n", 14, "data after the last entry");
-  const std::string fewer = "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty float y\nproperty float z\n"
-                            "element face 1\nproperty list uchar int vertex_indices\nend_header\n";
+  const std::string fewer =
+      "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty float y\nproperty float z\n"
+      "element face 1\nproperty list uchar int vertex_indices\nend_header\n";
   expectLineError("lie_fewer.ply", fewer + "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", 12, "face 0 has 0 vertices");
   expectLineError("lie_faces.ply", h + "0 0 0\n1 0 0\n0 1 0\n", 12, "end of file after 0 of the 1 'face' entries");
   expectLineError("short_line.ply", h + "0 0 0\n1 0\n0 1 0\n3 0 1 2\n", 11, "the line ends before property 'z'");
-  expectLineError("short_list.ply", h + "0 0 0\n1 0 0\n0 1 0\n3 0 1\n", 13, "the line ends before property 'vertex_indices'");
+  expectLineError("short_list.ply", h + "0 0 0\n1 0 0\n0 1 0\n3 0 1\n", 13,
+                  "the line ends before property 'vertex_indices'");
 }
 
 TEST_F(Readers, MalformedBinaryPlyData) {
-  const std::string header = "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
-                             "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n";
+  const std::string header =
+      "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+      "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n";
   const std::size_t d = header.size();
   Bytes b;
   for (float v : {0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 0.f, 1.f, 0.f}) b.put<float>(v);
@@ -610,13 +647,14 @@ TEST_F(Readers, MalformedBinaryPlyData) {
 // ---------------------------------------------------------------------------------------------------- XYZ
 
 TEST_F(Readers, XyzSeparatorsCommentsAndNormals) {
-  const std::string text = "# scanned points\n"
-                           "1 2 3\n"
-                           "\n"
-                           "4.5\t-5\t6e-1   # tab separated\n"
-                           "7,8,9\n"
-                           "  -1 , +2 ,3.25  \r\n"
-                           "\t\n";
+  const std::string text =
+      "# scanned points\n"
+      "1 2 3\n"
+      "\n"
+      "4.5\t-5\t6e-1   # tab separated\n"
+      "7,8,9\n"
+      "  -1 , +2 ,3.25  \r\n"
+      "\t\n";
   const auto cModel = loadModel(write("plain.xyz", text));
   const PointCloud& c = asCloud(cModel);
   ASSERT_EQ(c.points().size(), 4u);
@@ -659,17 +697,15 @@ const fs::path kModels = fs::path(UNIDIST_SHARED_DIR) / "acceptance" / "models";
 const fs::path kFcl = fs::path(UNIDIST_SHARED_DIR) / "data" / "fcl";
 
 /// The shared file, or an empty path when the shared directory is not there.
-fs::path sharedFile(const fs::path& dir, const char* name) {
-  return fs::exists(dir / name) ? dir / name : fs::path();
-}
+fs::path sharedFile(const fs::path& dir, const char* name) { return fs::exists(dir / name) ? dir / name : fs::path(); }
 
 TEST(SharedModels, AcceptanceMeshesLoad) {
   const struct {
     const char* name;
     std::size_t triangles;
     bool solid;
-  } cases[] = {{"cube.obj", 12, true},          {"lshape.obj", 20, true},     {"icosphere_320.obj", 320, true},
-               {"icosphere.stl", 1280, true},   {"torus_1k.obj", 1024, true}, {"torus_20k.obj", 0, true}};
+  } cases[] = {{"cube.obj", 12, true},        {"lshape.obj", 20, true},     {"icosphere_320.obj", 320, true},
+               {"icosphere.stl", 1280, true}, {"torus_1k.obj", 1024, true}, {"torus_20k.obj", 0, true}};
   bool any = false;
   for (const auto& c : cases) {
     SCOPED_TRACE(c.name);

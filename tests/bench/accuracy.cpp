@@ -17,6 +17,7 @@ using oracle::Shape;
 
 struct Row {
   std::vector<double> errors, times, widths;
+  double worstExcess = 0;  // how much more negative than the truth (deeper than the oracle's best direction)
   int certified = 0;
 };
 
@@ -28,15 +29,16 @@ double median(std::vector<double> v) {
 
 void record(Row& row, const unidist::DistanceResult& r, double truth, double micros) {
   row.errors.push_back(std::abs(r.distance - truth));
+  row.worstExcess = std::max(row.worstExcess, truth - r.distance);
   row.times.push_back(micros);
   row.widths.push_back(r.upperBound - r.lowerBound);
   row.certified += r.status == unidist::Status::Certified;
 }
 
 void print(const std::string& pair, const char* regime, double tol, const Row& row) {
-  std::printf("%s,%s,%zu,%.3g,%.3g,%.3g,%.3f,%.3f,%.3g\n", pair.c_str(), regime, row.errors.size(), tol,
-              *std::max_element(row.errors.begin(), row.errors.end()), median(row.errors), median(row.times),
-              double(row.certified) / row.errors.size(), median(row.widths));
+  std::printf("%s,%s,%zu,%.3g,%.3g,%.3g,%.3g,%.3f,%.3f,%.3g\n", pair.c_str(), regime, row.errors.size(), tol,
+              *std::max_element(row.errors.begin(), row.errors.end()), median(row.errors), row.worstExcess,
+              median(row.times), double(row.certified) / row.errors.size(), median(row.widths));
 }
 
 unidist::DistanceResult timed(const unidist::Model& a, const Pose& XA, const unidist::Model& b, const Pose& XB,
@@ -54,7 +56,10 @@ int main(int argc, char** argv) {
   std::mt19937_64 rng(2026);
   auto shapes = fixtures::convexShapes();
   const Shape torus = fixtures::torusShape();
-  std::printf("pair,regime,cases,tolerance,max_abs_error,median_abs_error,median_time_us,certified_share,median_bound_width\n");
+  // For penetrations the truth is the direction oracle's depth, an upper estimate that stalls by up to ~1e-4 on
+  // the ridges of edges and rims: there |error| also counts where we beat it; max_excess_depth (ours deeper
+  // than the oracle's best direction) is the part that would be a real error.
+  std::printf("pair,regime,cases,tolerance,max_abs_error,median_abs_error,max_excess_depth,median_time_us,certified_share,median_bound_width\n");
   for (const Shape& sa : shapes)
     for (const Shape& sb : shapes) {
       if (&sb < &sa) continue;

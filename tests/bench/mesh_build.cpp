@@ -3,10 +3,12 @@
 //
 //   unidist_bench_mesh_build [queries=20000]
 //
-// Prints CSV: triangles, build_ms (median of 7 builds), bvh_bytes_per_triangle, model_bytes_per_triangle, then
-// the median point-query time in µs for points near the surface (within 2 % of the size) and far from it
-// (in a box 3× the size), with each pruning volume. The answers of the three traversals are compared: a fast
-// wrong answer fails the run.
+// Prints CSV: triangles, build_ms (median of 7 builds), bvh_bytes_per_triangle, model_bytes_per_triangle,
+// depth, then the median point-query time in µs for points near the surface (within 2 % of the size) and far
+// from it (uniform in [-3, 3]³, the torus being ~2 across), with each pruning volume (a copy of the library's
+// traversal), then TriangleMesh::closestPoint itself (near, far) and inside() (winding number; the first
+// call builds its data outside the timing). The three traversals' answers are compared: a fast wrong answer
+// fails the run.
 #include "core/mesh_fixtures.h"
 #include "mesh/bvh.h"
 #include "mesh/point_triangle.h"
@@ -83,47 +85,6 @@ double nearest(const TriangleMesh& m, const MeshBvh& b, const Vec& q, Prune prun
   }
 }
 
-// Best-first: a heap ordered by the lower bound; stops when the nearest pending node is not closer.
-double nearestBestFirst(const TriangleMesh& m, const MeshBvh& b, const Vec& q) {
-  double best = std::numeric_limits<double>::infinity();
-  struct Entry {
-    double d;
-    std::uint32_t node;
-    bool operator<(const Entry& o) const { return d > o.d; }
-  };
-  std::vector<Entry> heap;
-  heap.reserve(256);
-  heap.push_back({b.tree.nodes[0].squaredDistance(q), 0});
-  while (!heap.empty()) {
-    std::pop_heap(heap.begin(), heap.end());
-    const Entry e = heap.back();
-    heap.pop_back();
-    if (!(e.d < best)) break;
-    const BvhNode& n = b.tree.nodes[e.node];
-    if (n.leaf()) {
-      for (std::uint32_t s = n.first; s < n.first + n.count; ++s) {
-        const std::uint32_t t = b.tree.order[s];
-        const auto& tri = m.triangles()[t];
-        const Vec& a = m.vertices()[tri[0]];
-        const double h = m.faceNormal(static_cast<int>(t)).dot(q - a);
-        if (h * h >= best) continue;
-        const auto r = unidist::mesh::closestOnTriangle(q, a, m.vertices()[tri[1]], m.vertices()[tri[2]],
-                                                        m.faceNormal(static_cast<int>(t)));
-        best = std::min(best, r.squaredDistance);
-      }
-      continue;
-    }
-    for (std::uint32_t c : {n.first, n.first + 1}) {
-      const double d = b.tree.nodes[c].squaredDistance(q);
-      if (d < best) {
-        heap.push_back({d, c});
-        std::push_heap(heap.begin(), heap.end());
-      }
-    }
-  }
-  return std::sqrt(best);
-}
-
 template <class F>
 double medianMicros(int reps, F&& f) {
   std::vector<double> t;
@@ -141,7 +102,8 @@ double medianMicros(int reps, F&& f) {
 int main(int argc, char** argv) {
   const int queries = argc > 1 ? std::atoi(argv[1]) : 20000;
   std::printf("triangles,build_ms,bvh_bytes_per_triangle,model_bytes_per_triangle,depth,"
-              "near_us_box,near_us_ball,near_us_both,far_us_box,far_us_ball,far_us_both,near_us_model\n");
+              "near_us_box,near_us_ball,near_us_both,far_us_box,far_us_ball,far_us_both,model_near_us,model_far_us,"
+              "inside_us\n");
   for (int n : {22, 71, 224}) {  // torus(2n × n/2): ~1k, ~10k, ~100k triangles
     const meshfix::Soup soup = meshfix::torus(0.8, 0.25, 2 * n, n / 2);
     double buildMs = 0, bvhBytes = 0, modelBytes = 0;
@@ -185,24 +147,20 @@ int main(int argc, char** argv) {
           return 1;
         }
     }
-    double bestFirst[2];
-    for (int set = 0; set < 2; ++set) {
-      const std::vector<Vec>& pts = set == 0 ? near : far;
-      double sum = 0;
-      bestFirst[set] = medianMicros(5, [&] {
-                         for (const Vec& q : pts) sum += nearestBestFirst(m, b, q);
-                       }) /
-                       static_cast<double>(pts.size());
-      std::fprintf(stderr, "best-first %s: %.3f us (%g)\n", set == 0 ? "near" : "far", bestFirst[set], sum);
-    }
     double sink = 0;
-    const double modelUs = medianMicros(5, [&] {
-                             for (const Vec& q : near) sink += m.closestPoint(q).signedDistance;
-                           }) /
-                           static_cast<double>(near.size());
-    std::printf("%zu,%.2f,%.1f,%.1f,%d,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f\n", m.triangles().size(), buildMs, bvhBytes,
-                modelBytes, b.tree.depth, results[0][0], results[0][1], results[0][2], results[1][0], results[1][1],
-                results[1][2], modelUs + 0 * sink);
+    const auto perQuery = [&](const std::vector<Vec>& pts, auto&& f) {
+      return medianMicros(5, [&] {
+               for (const Vec& q : pts) sink += f(q);
+             }) /
+             static_cast<double>(pts.size());
+    };
+    const double modelNear = perQuery(near, [&](const Vec& q) { return m.closestPoint(q).signedDistance; });
+    const double modelFar = perQuery(far, [&](const Vec& q) { return m.closestPoint(q).signedDistance; });
+    (void)m.inside(near[0]);  // builds the winding data
+    const double insideUs = perQuery(near, [&](const Vec& q) { return m.inside(q) ? 1.0 : 0.0; });
+    std::printf("%zu,%.2f,%.1f,%.1f,%d,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f\n", m.triangles().size(), buildMs,
+                bvhBytes, modelBytes, b.tree.depth, results[0][0], results[0][1], results[0][2], results[1][0],
+                results[1][1], results[1][2], modelNear, modelFar, insideUs + 0 * sink);
   }
   return 0;
 }

@@ -88,6 +88,8 @@ void registerAll() {
     for (size_t j = i; j < shapes.size(); ++j)
       for (double gap : {0.1, -0.05})
         for (int e = 0; e < 3; ++e) {
+          // FCL 0.7's own solver aborts (an assertion in its EPA) on some penetrating pairs: libccd only there.
+          if (e == 2 && gap < 0) continue;
           const std::string name = shapes[i].kind + "-" + shapes[j].kind + (gap > 0 ? "/separated/" : "/penetrating/") +
                                    engines[e];
           benchmark::RegisterBenchmark(name.c_str(), [=](benchmark::State& s) { runPair(s, shapes[i], shapes[j], gap, e); });

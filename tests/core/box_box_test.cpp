@@ -35,6 +35,15 @@ using unidist::detail::convexDistance;
 using unidist::detail::SupportFn;
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kPi = 3.14159265358979323846;
+
+// Random-case counts are divided by kReduce in debug builds (unoptimised Eigen is ~50x slower), never to none.
+#ifdef NDEBUG
+constexpr int kReduce = 1;
+#else
+constexpr int kReduce = 10;
+#endif
+int cases(int n) { return std::max(n / kReduce, 2); }
 
 std::string sci(double x) {
   char buf[32];
@@ -137,7 +146,7 @@ double overlapAlong(const Box& a, const Box& b, const Vector3d& n) {
 
 double denseDirectionDepth(const Box& a, const Box& b, int samples) {
   double best = kInf;
-  const double golden = M_PI * (3 - std::sqrt(5.0));
+  const double golden = kPi * (3 - std::sqrt(5.0));
   for (int i = 0; i < samples; ++i) {
     const double z = 1 - 2 * (i + 0.5) / samples, rho = std::sqrt(1 - z * z);
     best = std::min(best, overlapAlong(a, b, Vector3d(rho * std::cos(golden * i), rho * std::sin(golden * i), z)));
@@ -205,7 +214,7 @@ TEST(BoxBox, CoincidentBoxesDepthIsSmallestFullExtent) {
   // Two identical boxes at the same pose: B must move by the smallest full extent, 2·0.3, along ±y of the box.
   const Vector3d h(0.5, 0.3, 0.8);
   std::mt19937_64 rng(1);
-  for (int i = 0; i < 20; ++i) {
+  for (int i = 0; i < cases(20); ++i) {
     const Isometry3d X = i == 0 ? Isometry3d::Identity() : randomPose(rng, 2.0);
     const Box a{h, X}, b{h, X};
     for (double tol : {1e-9, 0.0}) {
@@ -228,7 +237,7 @@ TEST(BoxBox, SeparatedRandomPosesAgainstBruteForce) {
   int separated = 0, flips = 0, moves = 0;
   double worst = 0;
   int maxIts = 0;
-  for (int i = 0; i < 400 && separated < 150; ++i) {
+  for (int i = 0; i < cases(400) && separated < cases(150); ++i) {
     const Box a{Vector3d(H(rng), H(rng), H(rng)), randomPose(rng, 0.5)};
     const Box b{Vector3d(H(rng), H(rng), H(rng)), randomPose(rng, 2.5)};
     const double size = 2 * (a.h.norm() + b.h.norm());
@@ -246,7 +255,7 @@ TEST(BoxBox, SeparatedRandomPosesAgainstBruteForce) {
     ++moves;
     flips += moveInvariants(r, a, b, tol);
   }
-  EXPECT_GE(separated, 100);
+  EXPECT_GE(separated, cases(100));
   EXPECT_GT(flips, moves / 2);
   RecordProperty("worst_relative_error", sci(worst));
   RecordProperty("max_iterations", maxIts);
@@ -257,7 +266,7 @@ TEST(BoxBox, PenetratingRandomPosesAgainstFacetEnumeration) {
   std::uniform_real_distribution<double> H(0.1, 1.0);
   int penetrating = 0;
   double worst = 0;
-  for (int i = 0; i < 300 && penetrating < 80; ++i) {
+  for (int i = 0; i < cases(300) && penetrating < cases(80); ++i) {
     const Box a{Vector3d(H(rng), H(rng), H(rng)), randomPose(rng, 0.3)};
     const Box b{Vector3d(H(rng), H(rng), H(rng)), randomPose(rng, 1.0)};
     const double size = 2 * (a.h.norm() + b.h.norm());
@@ -273,7 +282,7 @@ TEST(BoxBox, PenetratingRandomPosesAgainstFacetEnumeration) {
     EXPECT_TRUE(moveInvariants(r, a, b, 1e-9 * size));
     worst = std::max(worst, std::abs(r.distance + depth) / size);
   }
-  EXPECT_GE(penetrating, 50);
+  EXPECT_GE(penetrating, cases(50));
   RecordProperty("worst_relative_error", sci(worst));
 }
 
@@ -284,7 +293,7 @@ TEST(BoxBox, NearParallelFacesExactTo1em11) {
   std::mt19937_64 rng(555);
   std::normal_distribution<double> N(0, 1);
   for (double angle : {1e-3, 1e-5, 1e-7, 1e-9, 0.0}) {
-    for (int k = 0; k < 4; ++k) {
+    for (int k = 0; k < cases(4); ++k) {
       const Vector3d axis = Vector3d(N(rng), N(rng), N(rng)).normalized();
       for (double gap : {1e-3, 1e-7, 1e-10, -1e-10, -1e-7, -1e-3}) {
         const Box a{Vector3d(1.0, 0.7, 0.4), Isometry3d::Identity()};
@@ -315,9 +324,9 @@ TEST(BoxBox, TouchingFaceToFaceIsZero) {
   Box b{Vector3d(0.5, 0.25, 0.5), Isometry3d::Identity()};
   b.X.translation() = Vector3d(0.25, -0.125, 0.9);
   Box c = b;
-  c.X.linear() = Eigen::AngleAxisd(M_PI / 6, Vector3d::UnitZ()).toRotationMatrix();
+  c.X.linear() = Eigen::AngleAxisd(kPi / 6, Vector3d::UnitZ()).toRotationMatrix();
   Box e{Vector3d(0.5, 0.25, 0.25), Isometry3d::Identity()};
-  e.X.linear() = Eigen::AngleAxisd(M_PI / 4, Vector3d::UnitX()).toRotationMatrix();
+  e.X.linear() = Eigen::AngleAxisd(kPi / 4, Vector3d::UnitX()).toRotationMatrix();
   e.X.translation() = Vector3d(0, 0, 0.4 + 0.25 * std::sqrt(2.0));
   for (const Box& top : {b, c, e}) {
     for (double tol : {1e-9, 0.0}) {
@@ -340,7 +349,7 @@ TEST(BoxBox, ScalesKeepRelativeAccuracy) {
   std::uniform_real_distribution<double> H(0.1, 1.0);
   for (double scale : {1e-4, 1.0, 1e4}) {
     int apart = 0, overlap = 0;
-    for (int i = 0; i < 120; ++i) {
+    for (int i = 0; i < cases(120); ++i) {
       Box a{scale * Vector3d(H(rng), H(rng), H(rng)), randomPose(rng, 0.5)};
       Box b{scale * Vector3d(H(rng), H(rng), H(rng)), randomPose(rng, 1.5)};
       const Vector3d far = scale * Vector3d(1e3, -2e3, 5e2);
@@ -351,11 +360,11 @@ TEST(BoxBox, ScalesKeepRelativeAccuracy) {
       double truth;
       if (dense > 0) {
         // Overlapping (no sampled direction separates): facet enumeration in A's frame for a fair oracle.
-        if (++overlap > 12) continue;
+        if (++overlap > cases(12)) continue;
         Box al{a.h, Isometry3d::Identity()}, bl{b.h, a.X.inverse() * b.X};
         truth = -depthOracle(al, bl, 1e-12 * size);
       } else {
-        if (++apart > 30) continue;
+        if (++apart > cases(30)) continue;
         truth = separatedOracle(a, b);
       }
       const double tol = 1e-9 * size;  // the library default
@@ -364,8 +373,8 @@ TEST(BoxBox, ScalesKeepRelativeAccuracy) {
       // Slack: rounding of world coordinates ~1e3 sizes from the origin (1e-16 × 2e3 × size), with margin.
       expectContract(r, a, b, truth, tol, 1e-12 * size);
     }
-    EXPECT_GT(apart, 10);
-    EXPECT_GT(overlap, 5);
+    EXPECT_GT(apart, cases(10));
+    EXPECT_GT(overlap, cases(5));
   }
 }
 
@@ -373,7 +382,7 @@ TEST(BoxBox, AgreesWithGenericConvexDistance) {
   // The exact pair function and GJK/EPA on the boxes' support maps answer the same question.
   std::mt19937_64 rng(4);
   std::uniform_real_distribution<double> H(0.1, 1.0);
-  for (int i = 0; i < 200; ++i) {
+  for (int i = 0; i < cases(200); ++i) {
     const Box a{Vector3d(H(rng), H(rng), H(rng)), randomPose(rng, 0.5)};
     const Box b{Vector3d(H(rng), H(rng), H(rng)), randomPose(rng, 1.5)};
     const double size = 2 * (a.h.norm() + b.h.norm());

@@ -41,6 +41,15 @@ using unidist::detail::convexDistance;
 using unidist::detail::SupportFn;
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kPi = 3.14159265358979323846;
+
+// Random-case counts are divided by kReduce in debug builds (unoptimised Eigen is ~50x slower), never to none.
+#ifdef NDEBUG
+constexpr int kReduce = 1;
+#else
+constexpr int kReduce = 10;
+#endif
+int cases(int n) { return std::max(n / kReduce, 2); }
 
 std::string sci(double x) {
   char buf[32];
@@ -87,7 +96,7 @@ double pointTriangleDistance(const Vector3d& p, const Vector3d& a, const Vector3
 // smallest distance to a supporting plane through three of the points.
 double hullSignedDistanceOracle(const std::vector<Vector3d>& pts, double planeTol) {
   const int n = static_cast<int>(pts.size());
-  double minPlane = kInf;  // over supporting planes: the origin's signed height above (outside) ... see below
+  double minPlane = kInf;  // smallest h(n) over supporting planes: the depth when the origin is inside
   bool outside = false;
   double dist = kInf;
   for (int i = 0; i < n; ++i)
@@ -241,17 +250,16 @@ double hD(const Shape& a, const Shape& b, const Vector3d& n) { return n.dot(a.su
 double dualOracle(const Shape& a, const Shape& b, std::mt19937_64& rng, const Vector3d& extraStart = Vector3d::Zero()) {
   const int samples = 3000;
   std::vector<std::pair<double, Vector3d>> vals;
-  vals.reserve(samples + 1);
-  const double golden = M_PI * (3 - std::sqrt(5.0));
+  vals.reserve(samples);
+  const double golden = kPi * (3 - std::sqrt(5.0));
   for (int i = 0; i < samples; ++i) {
     const double z = 1 - 2 * (i + 0.5) / samples, rho = std::sqrt(1 - z * z);
     const Vector3d n(rho * std::cos(golden * i), rho * std::sin(golden * i), z);
     vals.emplace_back(hD(a, b, n), n);
   }
-  if (extraStart.squaredNorm() > 0) vals.emplace_back(hD(a, b, extraStart.normalized()), extraStart.normalized());
   std::partial_sort(vals.begin(), vals.begin() + 6, vals.end(),
                     [](const auto& x, const auto& y) { return x.first < y.first; });
-  if (extraStart.squaredNorm() > 0) vals[5] = {hD(a, b, extraStart.normalized()), extraStart.normalized()};
+  if (extraStart.squaredNorm() > 0) vals[5] = {hD(a, b, extraStart.normalized()), extraStart.normalized()};  // 6th start
   std::normal_distribution<double> N(0, 1);
   double best = kInf;
   for (int s = 0; s < 6; ++s) {
@@ -328,7 +336,7 @@ ConvexDistance run(const Shape& a, const Shape& b, double tol, int maxIterations
 TEST(Segments, PointSegmentMatchesClampedProjection) {
   std::mt19937_64 rng(7);
   std::uniform_real_distribution<double> U(-2, 2);
-  for (int i = 0; i < 2000; ++i) {
+  for (int i = 0; i < cases(2000); ++i) {
     const Vector3d p(U(rng), U(rng), U(rng)), a(U(rng), U(rng), U(rng));
     const Vector3d b = (i % 10 == 0) ? a : Vector3d(U(rng), U(rng), U(rng));  // every tenth: zero length
     const auto c = closestPointSegment(p, a, b);
@@ -352,7 +360,7 @@ TEST(Segments, SegmentSegmentMatchesBruteForce) {
   std::mt19937_64 rng(11);
   std::uniform_real_distribution<double> U(-1, 1);
   int parallel = 0, degenerate = 0;
-  for (int i = 0; i < 3000; ++i) {
+  for (int i = 0; i < cases(3000); ++i) {
     Vector3d p1(U(rng), U(rng), U(rng)), q1(U(rng), U(rng), U(rng)), p2(U(rng), U(rng), U(rng)),
         q2(U(rng), U(rng), U(rng));
     switch (i % 6) {
@@ -376,8 +384,8 @@ TEST(Segments, SegmentSegmentMatchesBruteForce) {
     ASSERT_LE((c.point2 - (p2 + c.t * (q2 - p2))).norm(), 1e-14);
     ASSERT_NEAR((c.point1 - c.point2).norm(), c.distance, 1e-15);
   }
-  EXPECT_GT(parallel, 1000);
-  EXPECT_GT(degenerate, 800);
+  EXPECT_GT(parallel, cases(1000));
+  EXPECT_GT(degenerate, cases(800));
 }
 
 TEST(Segments, NearParallelCrossingKeepsExactDistance) {
@@ -419,7 +427,7 @@ TEST(Simplex, ClosestPointMatchesBruteForceIncludingDegenerate) {
   std::mt19937_64 rng(3);
   std::uniform_real_distribution<double> U(-1, 1);
   int inside = 0;
-  for (int i = 0; i < 30000; ++i) {
+  for (int i = 0; i < cases(30000); ++i) {
     const int n = 1 + i % 4;
     Vector3d p[4];
     for (int k = 0; k < n; ++k) p[k] = Vector3d(U(rng), U(rng), U(rng));
@@ -468,7 +476,7 @@ TEST(Simplex, ClosestPointMatchesBruteForceIncludingDegenerate) {
       ASSERT_LE((v - s.v).norm(), 1e-12);
     }
   }
-  EXPECT_GT(inside, 100);
+  EXPECT_GT(inside, cases(100));
 }
 
 // ---------------------------------------------------------------------------------------------------------
@@ -480,7 +488,7 @@ TEST(ConvexDistance, SphereSphereRandomAgainstClosedForm) {
   std::uniform_real_distribution<double> U(-1, 1), R(0.2, 1.0);
   int penetrating = 0, separated = 0, gjkIts = 0, epaIts = 0;
   MoveCheck mc;
-  for (int i = 0; i < 400; ++i) {
+  for (int i = 0; i < cases(400); ++i) {
     const Vector3d ca(U(rng), U(rng), U(rng)), cb(U(rng), U(rng), U(rng));
     const double ra = R(rng), rb = R(rng);
     const double truth = (cb - ca).norm() - ra - rb;
@@ -500,8 +508,8 @@ TEST(ConvexDistance, SphereSphereRandomAgainstClosedForm) {
     (truth < 0 ? penetrating : separated)++;
     (truth < 0 ? epaIts : gjkIts) += r.iterations;
   }
-  EXPECT_GT(penetrating, 80);
-  EXPECT_GT(separated, 80);
+  EXPECT_GT(penetrating, cases(80));
+  EXPECT_GT(separated, cases(80));
   EXPECT_EQ(mc.flips, mc.total);  // spheres are round: moving 1 % past contact always flips the sign
   RecordProperty("mean_iterations_separated", gjkIts / std::max(separated, 1));
   RecordProperty("mean_iterations_penetrating", epaIts / std::max(penetrating, 1));
@@ -510,13 +518,13 @@ TEST(ConvexDistance, SphereSphereRandomAgainstClosedForm) {
 TEST(ConvexDistance, SphereGapOfOneNanometreIsResolved) {
   // The conformance case 'sphere gap 1.000000082740371e-09': radii 1 and 0.5, centres 1.5 + gap apart, in many
   // directions (GJK's start is then generic). With tol 1e-12 the proved interval is that narrow; the error
-  // budget 1e-11 of the conformance suite is checked on the value.
+  // budget 1e-11 of the conformance suite is checked on the value, and with tol 0 GJK must reach rounding.
   const double gap = 1.000000082740371e-09;
   std::mt19937_64 rng(99);
   std::normal_distribution<double> N(0, 1);
   int maxIts = 0;
-  double worst = 0;
-  for (int i = 0; i < 200; ++i) {
+  double worst = 0;  // with tol = 0
+  for (int i = 0; i < cases(200); ++i) {
     const Vector3d dir = Vector3d(N(rng), N(rng), N(rng)).normalized();
     const Vector3d ca = (i % 2) ? Vector3d(0.3, -0.2, 0.1) : Vector3d::Zero();
     const Shape a = sphere(ca, 1.0), b = sphere(ca + (1.5 + gap) * dir, 0.5);
@@ -528,13 +536,13 @@ TEST(ConvexDistance, SphereGapOfOneNanometreIsResolved) {
       ASSERT_LE(r.lowerBound, truth + 1e-15);
       ASSERT_GE(r.upperBound, truth - 1e-15);
       ASSERT_GT(r.lowerBound, 0) << "the interval must prove separation";
-      worst = std::max(worst, std::abs(r.distance - truth));
+      if (tol == 0) worst = std::max(worst, std::abs(r.distance - truth));
       maxIts = std::max(maxIts, r.iterations);
     }
   }
   RecordProperty("worst_error", sci(worst));
   RecordProperty("max_iterations", maxIts);
-  EXPECT_LT(worst, 1e-14);  // measured ~1e-16: GJK is at rounding level here, not merely within the budget
+  EXPECT_LT(worst, 1e-14);  // tol 0: a few ulps of the radii, far inside the budget
 }
 
 TEST(ConvexDistance, NanometreGapsAtCurvedFeaturesAreResolved) {
@@ -575,13 +583,15 @@ TEST(ConvexDistance, NanometreGapsAtCurvedFeaturesAreResolved) {
 }
 
 TEST(ConvexDistance, TouchingSetsGiveZero) {
-  // Exactly representable contact: sphere r = 1 at the origin and r = 0.5 at z = 1.5 touch at (0, 0, 1).
-  {
-    const auto r = run(sphere(Vector3d::Zero(), 1), sphere(Vector3d(0, 0, 1.5), 0.5), 1e-12);
-    EXPECT_NEAR(r.distance, 0, 1e-15);
+  // Exactly representable contact: sphere r = 1 at the origin and r = 0.5 at z = 1.5 touch at (0, 0, 1). GJK
+  // approaches contact from outside, so the value is within the tolerance (1e-12 here; for tol 0, 1e-14: a few
+  // tens of ulps of the size 3); what must hold exactly is that the proved interval contains 0.
+  for (double tol : {1e-12, 0.0}) {
+    const auto r = run(sphere(Vector3d::Zero(), 1), sphere(Vector3d(0, 0, 1.5), 0.5), tol);
+    EXPECT_NEAR(r.distance, 0, std::max(tol, 1e-14));
     EXPECT_LE(r.lowerBound, 1e-15);
     EXPECT_GE(r.upperBound, -1e-15);
-    EXPECT_LE((r.pointA - Vector3d(0, 0, 1)).norm(), 1e-7);  // contact point: the sphere is flat to 2nd order
+    EXPECT_LE((r.pointA - Vector3d(0, 0, 1)).norm(), 1e-5);  // to ~sqrt(tol): the sphere is flat to 2nd order
   }
   // Box face on box face (coplanar faces z = 0.4), sphere on a face, cone apex on a face.
   const Isometry3d I = Isometry3d::Identity();
@@ -592,14 +602,14 @@ TEST(ConvexDistance, TouchingSetsGiveZero) {
       {"face on face", box(up, Vector3d(0.5, 0.5, 0.3))},
       {"sphere on face", sphere(Vector3d(0.1, 0.2, 0.4 + 0.25), 0.25)},
       {"cone apex down on face", cone(Isometry3d(Eigen::Translation3d(0.3, 0.1, 0.4 + 0.5) *
-                                                 Eigen::AngleAxisd(M_PI, Vector3d::UnitX())),
+                                                 Eigen::AngleAxisd(kPi, Vector3d::UnitX())),
                                        0.3, 0.5)},
   };
   for (const auto& [name, top] : tops) {
     for (double tol : {1e-9, 0.0}) {
       const auto r = run(base, top, tol);
       SCOPED_TRACE(name);
-      EXPECT_NEAR(r.distance, 0, 1e-14);
+      EXPECT_NEAR(r.distance, 0, 1e-13);  // contact approached from outside: rounding of unit-size coordinates
       EXPECT_LE(r.lowerBound, 1e-15);
       EXPECT_GE(r.upperBound, -1e-15);
       EXPECT_LE((r.pointB - r.pointA - r.distance * r.normal).norm(), 1e-15);
@@ -647,7 +657,7 @@ TEST(ConvexDistance, SphereAgainstCapsuleCylinderConeBoxClosedForm) {
   double worstSep = 0, worstPen = 0;
   int itsSep = 0, itsPen = 0;
   MoveCheck mc;
-  for (int i = 0; i < 600; ++i) {
+  for (int i = 0; i < cases(600); ++i) {
     const Isometry3d X = randomPose(rng, 0.3);
     Shape solid;
     switch (i % 4) {
@@ -687,8 +697,8 @@ TEST(ConvexDistance, SphereAgainstCapsuleCylinderConeBoxClosedForm) {
       itsSep += r.iterations;
     }
   }
-  EXPECT_GT(penetrating, 60);
-  EXPECT_GT(separated, 100);
+  EXPECT_GT(penetrating, cases(60));
+  EXPECT_GT(separated, cases(100));
   EXPECT_GT(mc.flips, mc.total * 9 / 10);  // a ball has thickness everywhere; misses only at sharp rims
   RecordProperty("worst_relative_error_separated", sci(worstSep));
   RecordProperty("worst_relative_error_penetrating", sci(worstPen));
@@ -703,7 +713,7 @@ TEST(ConvexDistance, CapsuleCapsuleEqualsSegmentDistanceMinusRadii) {
   std::mt19937_64 rng(77);
   std::uniform_real_distribution<double> R(0.1, 0.5), H(0.0, 0.8);
   int penetrating = 0;
-  for (int i = 0; i < 300; ++i) {
+  for (int i = 0; i < cases(300); ++i) {
     const Isometry3d XA = randomPose(rng, 0.8), XB = randomPose(rng, 0.8);
     const double ra = R(rng), rb = R(rng), ha = H(rng), hb = (i % 10 == 0) ? 0.0 : H(rng);  // hb = 0: a sphere
     const Shape a = capsule(XA, ra, ha), b = capsule(XB, rb, hb);
@@ -718,7 +728,7 @@ TEST(ConvexDistance, CapsuleCapsuleEqualsSegmentDistanceMinusRadii) {
     expectContract(r, truth, tol, 1e-13 * size);
     penetrating += truth < 0;
   }
-  EXPECT_GT(penetrating, 30);
+  EXPECT_GT(penetrating, cases(30));
   // Parallel capsules side by side, overlapping by 0.1 laterally: the depth is lateral, 0.1.
   const Isometry3d XA = Isometry3d::Identity();
   const Isometry3d XB(Eigen::Translation3d(0.5, 0.2, 0.1));
@@ -735,7 +745,7 @@ TEST(ConvexDistance, RandomPolytopesAgainstBruteForce) {
   std::uniform_real_distribution<double> U(-1, 1), S(0.3, 1.2);
   int penetrating = 0, separated = 0;
   double worst = 0;
-  for (int i = 0; i < 150; ++i) {
+  for (int i = 0; i < cases(150); ++i) {
     std::vector<Vector3d> pa, pb;
     const double sa = S(rng), sb = S(rng);
     const Vector3d offset = 1.6 * Vector3d(U(rng), U(rng), U(rng));
@@ -759,8 +769,8 @@ TEST(ConvexDistance, RandomPolytopesAgainstBruteForce) {
     worst = std::max(worst, std::abs(r.distance - truth));
     (truth < 0 ? penetrating : separated)++;
   }
-  EXPECT_GT(penetrating, 25);
-  EXPECT_GT(separated, 25);
+  EXPECT_GE(penetrating, kReduce == 1 ? 25 : 1);  // both regimes hit (debug builds: few cases)
+  EXPECT_GE(separated, kReduce == 1 ? 25 : 1);
   RecordProperty("worst_abs_error", sci(worst));
 }
 
@@ -787,6 +797,7 @@ void checkCurvedPairs(double scale, const Vector3d& origin, unsigned seed, int c
   double worstSep = 0, worstPen = 0;
   int itsSep = 0, itsPen = 0, maxIts = 0;
   MoveCheck mc;
+  count = cases(count);
   for (int i = 0; i < count; ++i) {
     const Shape a = randomShape(rng, i, scale, origin);
     const Shape b = randomShape(rng, i / 4, scale, origin + scale * Vector3d(U(rng), U(rng), U(rng)));
@@ -826,8 +837,8 @@ void checkCurvedPairs(double scale, const Vector3d& origin, unsigned seed, int c
     }
     maxIts = std::max(maxIts, r.iterations);
   }
-  EXPECT_GT(penetrating, count / 8);
-  EXPECT_GT(separated, count / 8);
+  EXPECT_GE(penetrating, count / 8);
+  EXPECT_GE(separated, count / 8);
   EXPECT_GE(mc.flips, mc.total * 8 / 10);  // sharp rims and apexes can let a 1 % move glance past
   ::testing::Test::RecordProperty("worst_relative_gap_to_oracle_separated", sci(worstSep));
   ::testing::Test::RecordProperty("worst_relative_gap_to_oracle_penetrating", sci(worstPen));
@@ -844,7 +855,7 @@ TEST(ConvexDistance, SpheresAtExtremeScalesKeepRelativeAccuracy) {
   std::mt19937_64 rng(4242);
   std::uniform_real_distribution<double> U(-1, 1), R(0.2, 1.0);
   for (double scale : {1e-4, 1e4}) {
-    for (int i = 0; i < 100; ++i) {
+    for (int i = 0; i < cases(100); ++i) {
       const Vector3d ca = scale * Vector3d(U(rng), U(rng), U(rng)), cb = scale * Vector3d(U(rng), U(rng), U(rng));
       const double ra = scale * R(rng), rb = scale * R(rng);
       if ((cb - ca).norm() < 1e-3 * scale) continue;
@@ -863,7 +874,7 @@ TEST(ConvexDistance, IterationCapStillGivesProvedBounds) {
   std::mt19937_64 rng(8);
   std::uniform_real_distribution<double> U(-1, 1);
   int unconverged = 0;
-  for (int i = 0; i < 100; ++i) {
+  for (int i = 0; i < cases(100); ++i) {
     const Vector3d ca(U(rng), U(rng), U(rng)), cb(U(rng), U(rng), U(rng));
     if ((cb - ca).norm() < 1e-3) continue;
     const double truth = (cb - ca).norm() - 1.0;
@@ -875,7 +886,7 @@ TEST(ConvexDistance, IterationCapStillGivesProvedBounds) {
       unconverged += !r.converged;
     }
   }
-  EXPECT_GT(unconverged, 50);
+  EXPECT_GT(unconverged, cases(50));
 }
 
 TEST(ConvexDistance, ZeroToleranceMeansDoublePrecision) {
@@ -897,7 +908,7 @@ TEST(ConvexDistance, ContactReachedByOwnAnswerIsZero) {
   std::mt19937_64 rng(4711);
   std::uniform_real_distribution<double> U(-1.5, 1.5);
   int checked = 0;
-  for (int i = 0; i < 160; ++i) {
+  for (int i = 0; i < cases(160); ++i) {
     const Shape a = randomShape(rng, i, 1.0, Vector3d::Zero());
     const Shape b0 = randomShape(rng, i / 4 + 1, 1.0, Vector3d(U(rng), U(rng), U(rng)));
     const double size = a.diameter + b0.diameter;
@@ -919,7 +930,7 @@ TEST(ConvexDistance, ContactReachedByOwnAnswerIsZero) {
     }
     ++checked;
   }
-  EXPECT_GT(checked, 120);
+  EXPECT_GT(checked, cases(120));
 }
 
 TEST(ConvexDistance, NeedlesAndPlatesKeepProvedBounds) {
@@ -931,7 +942,7 @@ TEST(ConvexDistance, NeedlesAndPlatesKeepProvedBounds) {
   std::mt19937_64 rng(563);
   std::uniform_real_distribution<double> U(-0.4, 0.4), R(0.3, 0.8);
   int converged = 0, total = 0;
-  for (int i = 0; i < 120; ++i) {
+  for (int i = 0; i < cases(120); ++i) {
     Isometry3d XA = randomPose(rng, 0.2), XB = randomPose(rng, 0.2);
     XB.translation() += Vector3d(U(rng), U(rng), U(rng));
     const double thin = (i % 2) ? 1e-6 : 1e-3;

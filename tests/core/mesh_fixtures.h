@@ -34,7 +34,7 @@ inline LD segmentSq(const VecL& q, const VecL& a, const VecL& b) {
   const LD ee = e.squaredNorm();
   LD t = ee > 0 ? (q - a).dot(e) / ee : 0;
   t = std::clamp(t, (LD)0, (LD)1);
-  return (a + t * e - q).squaredNorm();
+  return ((a - q) + t * e).squaredNorm();  // relative to q first: keeps digits far from the origin
 }
 
 /// Squared distance from q to triangle (a, b, c): the unconstrained minimiser of |a + s e0 + t e1 − q|² when it

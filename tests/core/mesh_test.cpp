@@ -460,6 +460,37 @@ TEST(MeshTopology, BadInputIsRejectedWithTheReason) {
             "mesh: no triangle with non-zero area (2 triangles: 2 zero-area, 0 duplicate)");
 }
 
+// The smallest mesh: one triangle, open, a hierarchy of one leaf whose cell still splits down to points.
+TEST(MeshTopology, OneTriangle) {
+  const TriangleMesh m({{0, 0, 0}, {2, 0, 0}, {0, 1, 0}}, {{0, 1, 2}});
+  EXPECT_FALSE(m.isSolid());
+  EXPECT_EQ(m.stats().boundaryEdges, 3u);
+  EXPECT_EQ(m.closestPoint(Vec(0.5, 0.25, -3)).signedDistance, 3.0);
+  EXPECT_EQ(m.closestPoint(Vec(0.5, 0.25, -3)).normal, Vec(0, 0, -1));
+  EXPECT_EQ(m.closestPoint(Vec(0.5, 0.25, 0)).normal, Vec(0, 0, 1));  // on it: the face normal
+  EXPECT_EQ(m.support(Vec(1, 0.1, 0)), Vec(2, 0, 0));
+  std::vector<SurfaceCell> cells = m.surfaceCells();
+  ASSERT_EQ(cells.size(), 1u);
+  for (int i = 0; i < 30; ++i) {
+    std::vector<SurfaceCell> four;
+    m.splitCell(cells.front(), four);
+    ASSERT_EQ(four.size(), 4u);
+    cells = {four[static_cast<std::size_t>(i % 4)]};
+  }
+  EXPECT_LT(cells.front().radius, 1e-8);
+}
+
+// Queries are defined for finite points; a NaN or infinite one must still not crash or read out of bounds.
+TEST(MeshTopology, NonFiniteQueriesDoNotCrash) {
+  const TriangleMesh m = meshfix::makeMesh(unitCube());
+  for (const Vec& q : {Vec(NAN, 0, 0), Vec(INFINITY, 0, 0), Vec(0, -INFINITY, 1)}) {
+    const SurfacePoint s = m.closestPoint(q);
+    EXPECT_GE(s.feature, 0);
+    EXPECT_LT(s.feature, 12);
+    (void)m.inside(q);
+  }
+}
+
 // ---------------------------------------------------------------------------------------------------------
 // Convexity and the support map
 
@@ -636,6 +667,29 @@ TEST(MeshBvh, BuiltOnceLazilyAndSharedByConcurrentQueries) {
   EXPECT_EQ(fresh.bvhBuildCount(), 1);
   EXPECT_EQ(reference.bvhBuildCount(), 1);
   EXPECT_EQ(fresh.memoryBytes(), reference.memoryBytes());  // the same structures, built once each
+}
+
+// The build decides splits in single precision; a 1e-4 model 3e4 from its origin must still get a balanced
+// tree (floats of raw coordinates would merge its features), and cells with proved balls.
+TEST(MeshBvh, SmallModelFarFromItsOriginGetsABalancedTree) {
+  const Soup soup = meshfix::scaled(meshfix::icosphere(1.0, 4), 1e-4, Vec(1e4, -2e4, 3e4));  // 5120 triangles
+  const TriangleMesh m = meshfix::makeMesh(soup);
+  EXPECT_LE(m.bvh().tree.depth, 16);
+  std::mt19937_64 rng(23);
+  for (const Vec& q : meshfix::queryPoints(soup, 300, 0.05, 0.3, rng))
+    ASSERT_NEAR(std::abs(m.closestPoint(q).signedDistance), meshfix::bruteDistance(soup, q), 1e-13 * 2e-4);
+  // Every vertex is inside the ball of the node cells along the way down to it.
+  std::vector<SurfaceCell> cells = m.surfaceCells();
+  for (int level = 0; level < 6; ++level) {
+    for (const Vec& v : soup.vertices) {
+      bool inside = false;
+      for (const SurfaceCell& c : cells) inside = inside || (v - c.center).norm() <= c.radius;
+      ASSERT_TRUE(inside) << level;
+    }
+    std::vector<SurfaceCell> next;
+    for (const SurfaceCell& c : cells) m.splitCell(c, next);
+    cells = std::move(next);
+  }
 }
 
 TEST(MeshBvh, BuildTimeAndMemoryAreReported) {

@@ -49,9 +49,8 @@ class ObjReader {
     bool first = true;
     while (s_.nextLine()) {
       s_.stripComment('#');
-      const std::string_view body = s_.line();
-      if (body.find_last_not_of(" \t\v\f") != std::string_view::npos &&
-          body[body.find_last_not_of(" \t\v\f")] == '\\')
+      const std::size_t last = s_.line().find_last_not_of(" \t\v\f");
+      if (last != std::string_view::npos && s_.line()[last] == '\\')
         s_.fail("line continuation ('\\' at the end of a line) is not supported");
       const std::string_view key = s_.token();
       if (key.empty()) continue;
@@ -72,8 +71,8 @@ class ObjReader {
       } else if (oneOf(key, {"o", "g", "s", "l", "p", "usemtl", "mtllib", "lod", "bevel", "c_interp", "d_interp",
                              "shadow_obj", "trace_obj", "maplib", "usemap", "ctech", "stech"})) {
         // grouping, materials, smoothing, lines and points: nothing the geometry needs
-      } else if (oneOf(key, {"cstype", "deg", "bmat", "step", "curv", "curv2", "surf", "parm", "trim", "hole",
-                             "scrv", "sp", "end", "con"})) {
+      } else if (oneOf(key, {"cstype", "deg", "bmat", "step", "curv", "curv2", "surf", "parm", "trim", "hole", "scrv",
+                             "sp", "end", "con"})) {
         s_.fail("free-form geometry ('" + std::string(key) + "') is not supported; only polygonal faces are");
       } else if (!(firstStatement && countLine(key))) {
         s_.fail("unknown OBJ statement " + quoted(key) + " (expected v, f, vt, vn, o, g, s, usemtl, ...)");
@@ -122,8 +121,8 @@ class ObjReader {
     if (i == 0) s_.fail(what() + " is 0 (OBJ indices start at 1; negative ones count back from the last)");
     if (i < 0) {
       if (-i > counts_[k])
-        s_.fail(what() + " is " + std::to_string(i) + ", but only " + std::to_string(counts_[k]) + " " +
-                kKindName[k] + "(s) ('" + kKindKey[k] + "') are defined before this line");
+        s_.fail(what() + " is " + std::to_string(i) + ", but only " + std::to_string(counts_[k]) + " " + kKindName[k] +
+                "(s) ('" + kKindKey[k] + "') are defined before this line");
       return counts_[k] + i;
     }
     if (i > counts_[k]) forward_.push_back({s_.lineNumber(), i, k});
@@ -176,9 +175,9 @@ class ObjReader {
     for (const ForwardReference& r : forward_)
       if (r.index > counts_[r.kind])
         failAtLine(s_.path(), r.line,
-                   std::string(kKindName[r.kind]) + " index " + std::to_string(r.index) + " is out of range: the file " +
-                       "defines " + std::to_string(counts_[r.kind]) + " " + kKindName[r.kind] + "(s) ('" +
-                       kKindKey[r.kind] + "')");
+                   std::string(kKindName[r.kind]) + " index " + std::to_string(r.index) +
+                       " is out of range: the file " + "defines " + std::to_string(counts_[r.kind]) + " " +
+                       kKindName[r.kind] + "(s) ('" + kKindKey[r.kind] + "')");
     if (countLine_ != 0 && (declaredVertices_ != counts_[0] || declaredFaces_ != static_cast<long long>(faces_)))
       failAtLine(s_.path(), countLine_,
                  "the count line says " + std::to_string(declaredVertices_) + " vertices and " +

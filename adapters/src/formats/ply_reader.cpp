@@ -8,7 +8,8 @@
 // Used: element "vertex" (required, at least one) with scalar x, y, z of any numeric type, and scalar
 //   nx, ny, nz (all three or none; kept as the normals of a point cloud); element "face" with the list
 //   "vertex_indices" (or "vertex_index") of an integer type. Faces with k > 3 corners become a fan of k − 2
-//   triangles from the first corner (exact for convex polygons). Every other element and property is read
+//   triangles from the first corner (exact for convex polygons). "tristrips" are refused (reading the
+//   vertices alone would be a silently wrong model). Every other element and property is read
 //   (so its values are checked and the data stays in step) and ignored. A "face" element with 0 entries
 //   makes a point cloud.
 // ASCII data: one element entry per line, exactly the values the header declares (blank lines are skipped);
@@ -66,7 +67,7 @@ struct Property {
   const TypeInfo* type = nullptr;       // the value (or list item) type
   std::size_t line = 0;                 // header line, for messages
   Role role = Role::None;
-  std::string label, lengthLabel;       // "property 'x'", "the length of list 'vertex_indices'" (messages)
+  std::string label, lengthLabel;  // "property 'x'", "the length of list 'vertex_indices'" (messages)
 };
 
 struct Element {
@@ -87,8 +88,10 @@ class PlyReader {
   std::shared_ptr<const Model> read() {
     readHeader();
     assignRoles();
-    if (encoding_ == Encoding::Ascii) readAscii();
-    else readBinary();
+    if (encoding_ == Encoding::Ascii)
+      readAscii();
+    else
+      readBinary();
     if (isMesh_) return makeMesh(path_, std::move(vertices_), std::move(triangles_));
     return makeCloud(path_, std::move(vertices_), std::move(normals_));
   }
@@ -101,8 +104,7 @@ class PlyReader {
     if (s_.token() != "ply" || !s_.atEndOfLine()) s_.fail("not a PLY file: the first line must be 'ply'");
     bool haveFormat = false;
     for (;;) {
-      if (!s_.nextLine())
-        s_.fail("end of file in the header: the 'end_header' line is missing");
+      if (!s_.nextLine()) s_.fail("end of file in the header: the 'end_header' line is missing");
       const std::string_view key = s_.token();
       if (key.empty()) s_.fail("blank line in the PLY header");
       if (key == "comment" || key == "obj_info") continue;
@@ -115,10 +117,14 @@ class PlyReader {
         if (haveFormat) s_.fail("a second 'format' line");
         if (!elements_.empty()) s_.fail("'format' must come before the elements");
         const std::string_view enc = s_.token();
-        if (enc == "ascii") encoding_ = Encoding::Ascii;
-        else if (enc == "binary_little_endian") encoding_ = Encoding::BinaryLittle;
-        else if (enc == "binary_big_endian") encoding_ = Encoding::BinaryBig;
-        else s_.fail("unknown PLY format " + quoted(enc) + " (ascii, binary_little_endian or binary_big_endian)");
+        if (enc == "ascii")
+          encoding_ = Encoding::Ascii;
+        else if (enc == "binary_little_endian")
+          encoding_ = Encoding::BinaryLittle;
+        else if (enc == "binary_big_endian")
+          encoding_ = Encoding::BinaryBig;
+        else
+          s_.fail("unknown PLY format " + quoted(enc) + " (ascii, binary_little_endian or binary_big_endian)");
         const std::string_view version = s_.token();
         if (version != "1.0") s_.fail("unsupported PLY version " + quoted(version) + " (1.0 expected)");
         if (!s_.atEndOfLine()) s_.fail("unexpected text after the format version");
@@ -174,6 +180,12 @@ class PlyReader {
   void assignRoles() {
     const Element* vertex = nullptr;
     for (Element& e : elements_) {
+      // Entries without values carry nothing, and a binary count of them costs time but no bytes.
+      if (e.properties.empty() && e.count > 0)
+        failAtLine(path_, e.line, "element '" + e.name + "' has entries but no properties");
+      // Ignoring strips would turn a mesh into a point cloud without a word.
+      if (e.name == "tristrips" && e.count > 0)
+        failAtLine(path_, e.line, "triangle strips ('tristrips') are not supported; write faces");
       if (e.name == "vertex") {
         vertex = &e;
         for (Property& p : e.properties) {
@@ -181,8 +193,7 @@ class PlyReader {
                                                         {"nx", Role::NX}, {"ny", Role::NY}, {"nz", Role::NZ}};
           for (const auto& [name, role] : roles)
             if (p.name == name) {
-              if (p.list)
-                failAtLine(path_, p.line, "vertex property '" + p.name + "' is a list; it must be a number");
+              if (p.list) failAtLine(path_, p.line, "vertex property '" + p.name + "' is a list; it must be a number");
               p.role = role;
             }
         }
@@ -191,16 +202,16 @@ class PlyReader {
           if (p.name == "vertex_indices" || p.name == "vertex_index") {
             if (faceIndices_) failAtLine(path_, p.line, "the face element has both vertex_indices and vertex_index");
             if (!p.list)
-              failAtLine(path_, p.line, "face property '" + p.name + "' must be a list (property list uchar int " +
-                                            p.name + ")");
+              failAtLine(path_, p.line,
+                         "face property '" + p.name + "' must be a list (property list uchar int " + p.name + ")");
             if (!p.type->integer)
-              failAtLine(path_, p.line, "face property '" + p.name + "' has item type '" + p.type->name +
-                                            "'; vertex indices must be an integer type");
+              failAtLine(path_, p.line,
+                         "face property '" + p.name + "' has item type '" + p.type->name +
+                             "'; vertex indices must be an integer type");
             p.role = Role::Indices;
             faceIndices_ = &p;
           }
-        if (!faceIndices_)
-          failAtLine(path_, e.line, "the face element has no 'vertex_indices' list");
+        if (!faceIndices_) failAtLine(path_, e.line, "the face element has no 'vertex_indices' list");
         faceCount_ = e.count;
       }
     }
@@ -210,7 +221,8 @@ class PlyReader {
     for (const auto& [role, name] : {std::pair{Role::X, "x"}, {Role::Y, "y"}, {Role::Z, "z"}})
       if (!has[static_cast<int>(role)])
         failAtLine(path_, vertex->line, std::string("the vertex element has no '") + name + "' property");
-    const int normals = has[static_cast<int>(Role::NX)] + has[static_cast<int>(Role::NY)] + has[static_cast<int>(Role::NZ)];
+    const int normals =
+        has[static_cast<int>(Role::NX)] + has[static_cast<int>(Role::NY)] + has[static_cast<int>(Role::NZ)];
     if (normals != 0 && normals != 3)
       failAtLine(path_, vertex->line, "the vertex element has only some of nx, ny, nz (all three or none)");
     if (vertex->count == 0) failAtLine(path_, vertex->line, "the vertex element has 0 entries");
@@ -238,14 +250,15 @@ class PlyReader {
     }
   }
 
-  /// One vertex entry's values by role → the lists; `where` locates the entry for messages.
+  /// One vertex entry's values, indexed by Role, into the vertex (and normal) lists.
   void storeVertex(const double (&v)[7]) {
     vertices_.emplace_back(v[1], v[2], v[3]);
     if (wantNormals_) normals_.emplace_back(v[4], v[5], v[6]);
   }
 
   void storeFace() {
-    for (std::size_t k = 1; k + 1 < polygon_.size(); ++k) triangles_.push_back({polygon_[0], polygon_[k], polygon_[k + 1]});
+    for (std::size_t k = 1; k + 1 < polygon_.size(); ++k)
+      triangles_.push_back({polygon_[0], polygon_[k], polygon_[k + 1]});
   }
 
   std::string entryName(const Element& e, long long i) const {
@@ -265,11 +278,12 @@ class PlyReader {
         double values[7] = {};
         for (const Property& p : e.properties) {
           if (p.list) {
-            const long long n = s_.integer(asciiToken(e, i, p), p.lengthLabel,
-                                           p.countType->lo, p.countType->hi);
+            const long long n = s_.integer(asciiToken(e, i, p), p.lengthLabel, p.countType->lo, p.countType->hi);
             if (n < 0) s_.fail("list '" + p.name + "' has negative length " + std::to_string(n));
             if (p.role == Role::Indices) {
-              if (n < 3) s_.fail("face " + std::to_string(i) + " has " + std::to_string(n) + " vertices (at least 3; does the header match the data?)");
+              if (n < 3)
+                s_.fail("face " + std::to_string(i) + " has " + std::to_string(n) +
+                        " vertices (at least 3; does the header match the data?)");
               polygon_.clear();
             }
             for (long long k = 0; k < n; ++k) {
@@ -303,8 +317,7 @@ class PlyReader {
   std::string_view asciiToken(const Element& e, long long i, const Property& p) {
     const std::string_view t = s_.token();
     if (t.empty())
-      s_.fail(entryName(e, i) + ": the line ends before property '" + p.name +
-              "' (does the header match the data?)");
+      s_.fail(entryName(e, i) + ": the line ends before property '" + p.name + "' (does the header match the data?)");
     return t;
   }
 
@@ -326,14 +339,22 @@ class PlyReader {
       r.fail(r.offset(), "unexpected end of file in " + entryName(e, i) + ", property '" + p.name +
                              "' (the file is truncated or the header's counts are wrong)");
     switch (t.type) {
-      case Type::Int8: return r.read<std::int8_t>("int8");
-      case Type::UInt8: return r.read<std::uint8_t>("uint8");
-      case Type::Int16: return r.read<std::int16_t>("int16");
-      case Type::UInt16: return r.read<std::uint16_t>("uint16");
-      case Type::Int32: return r.read<std::int32_t>("int32");
-      case Type::UInt32: return r.read<std::uint32_t>("uint32");
-      case Type::Float32: return r.read<float>("float32");
-      case Type::Float64: return r.read<double>("float64");
+      case Type::Int8:
+        return r.read<std::int8_t>("int8");
+      case Type::UInt8:
+        return r.read<std::uint8_t>("uint8");
+      case Type::Int16:
+        return r.read<std::int16_t>("int16");
+      case Type::UInt16:
+        return r.read<std::uint16_t>("uint16");
+      case Type::Int32:
+        return r.read<std::int32_t>("int32");
+      case Type::UInt32:
+        return r.read<std::uint32_t>("uint32");
+      case Type::Float32:
+        return r.read<float>("float32");
+      case Type::Float64:
+        return r.read<double>("float64");
     }
     return 0;
   }
@@ -352,12 +373,14 @@ class PlyReader {
             const double n = binaryValue(r, *p.countType, e, i, p);
             if (n < 0) r.fail(at, "list '" + p.name + "' of " + entryName(e, i) + " has negative length");
             if (n * static_cast<double>(p.type->size) > static_cast<double>(r.remaining()))
-              r.fail(at, "list '" + p.name + "' of " + entryName(e, i) + " has " + std::to_string(static_cast<long long>(n)) +
-                             " items, more than the " + std::to_string(r.remaining()) +
+              r.fail(at, "list '" + p.name + "' of " + entryName(e, i) + " has " +
+                             std::to_string(static_cast<long long>(n)) + " items, more than the " +
+                             std::to_string(r.remaining()) +
                              " bytes left hold (the file is truncated or the header's counts are wrong)");
             if (p.role == Role::Indices) {
-              if (n < 3) r.fail(at, "face " + std::to_string(i) + " has " + std::to_string(static_cast<long long>(n)) +
-                                        " vertices (at least 3; does the header match the data?)");
+              if (n < 3)
+                r.fail(at, "face " + std::to_string(i) + " has " + std::to_string(static_cast<long long>(n)) +
+                               " vertices (at least 3; does the header match the data?)");
               polygon_.clear();
             }
             for (long long k = 0; k < static_cast<long long>(n); ++k) {
@@ -365,8 +388,9 @@ class PlyReader {
               const double v = binaryValue(r, *p.type, e, i, p);
               if (p.role == Role::Indices) {
                 if (v < 0 || v >= static_cast<double>(vertexCount_))
-                  r.fail(itemAt, "face " + std::to_string(i) + ": vertex index " + std::to_string(static_cast<long long>(v)) +
-                                     " is out of range (the header declares " + std::to_string(vertexCount_) + " vertices)");
+                  r.fail(itemAt,
+                         "face " + std::to_string(i) + ": vertex index " + std::to_string(static_cast<long long>(v)) +
+                             " is out of range (the header declares " + std::to_string(vertexCount_) + " vertices)");
                 polygon_.push_back(static_cast<std::uint32_t>(v));
               }
             }

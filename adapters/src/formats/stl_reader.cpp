@@ -29,8 +29,7 @@ using Triangle = TriangleMesh::Triangle;
 bool equalsIgnoreCase(std::string_view a, std::string_view b) {
   if (a.size() != b.size()) return false;
   for (std::size_t i = 0; i < a.size(); ++i)
-    if (std::tolower(static_cast<unsigned char>(a[i])) != std::tolower(static_cast<unsigned char>(b[i])))
-      return false;
+    if (std::tolower(static_cast<unsigned char>(a[i])) != std::tolower(static_cast<unsigned char>(b[i]))) return false;
   return true;
 }
 
@@ -116,7 +115,8 @@ class AsciiStl {
         s_.rest();  // the name again
         const std::string_view after = next();
         if (after.empty()) break;
-        if (!equalsIgnoreCase(after, "solid")) s_.fail("expected 'solid' or the end of the file, found " + quoted(after));
+        if (!equalsIgnoreCase(after, "solid"))
+          s_.fail("expected 'solid' or the end of the file, found " + quoted(after));
         s_.rest();
       } else {
         s_.fail("expected 'facet' or 'endsolid', found " + quoted(t));
@@ -160,7 +160,8 @@ class AsciiStl {
     for (int v = 0; v < 3; ++v) {
       const std::string_view t = next();
       if (!equalsIgnoreCase(t, "vertex"))
-        s_.fail("expected 'vertex' (a facet has exactly 3), found " + (t.empty() ? std::string("the end of file") : quoted(t)));
+        s_.fail("expected 'vertex' (a facet has exactly 3), found " +
+                (t.empty() ? std::string("the end of file") : quoted(t)));
       const double x = number("vertex x"), y = number("vertex y"), z = number("vertex z");
       vertices_.emplace_back(x, y, z);
     }

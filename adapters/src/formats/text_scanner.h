@@ -79,7 +79,7 @@ class LineScanner {
   std::size_t next_ = 0;   // offset of the next line to read
   std::size_t line_ = 0;
   std::string_view current_;
-  std::size_t cursor_ = 0;  // position in current_
+  std::size_t cursor_ = 0;     // position in current_
   bool pendingComma_ = false;  // field(): a ',' was consumed after the last value
 };
 

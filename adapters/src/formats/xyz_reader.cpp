@@ -28,8 +28,7 @@ std::shared_ptr<const Model> readXyz(const std::string& path) {
       ++n;
     }
     if (n == 0) continue;
-    if (n != 3 && n != 6)
-      s.fail(std::to_string(n) + " values (a point is x y z or x y z nx ny nz)");
+    if (n != 3 && n != 6) s.fail(std::to_string(n) + " values (a point is x y z or x y z nx ny nz)");
     if (columns == 0) {
       columns = n;
       firstLine = s.lineNumber();

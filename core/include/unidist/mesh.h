@@ -13,12 +13,15 @@
 //     solid with negative signed volume (normals pointing inward) has all its triangles flipped (vertices 1
 //     and 2 swapped) so that normals point outward;
 //  6. convex = solid, connected, every edge convex (the neighbour's far vertex on or below the triangle's
-//     plane within 1e-12 × the bounding-box diagonal) and every vertex's angle sum at most 2π (+1e-12). A
-//     closed immersed surface that is locally convex everywhere bounds a convex body (van Heijenoort 1952),
-//     so these O(n) local tests decide global convexity up to that tolerance.
+//     plane within 1e-12 × the bounding-box diagonal; coplanar neighbours facing the same way) and every
+//     vertex's angle sum at most 2π (+1e-9). A closed immersed surface that is locally convex everywhere
+//     bounds a convex body (van Heijenoort 1952), so these O(n) local tests decide convexity for any mesh
+//     that does not pass through itself. Meshes with at most 2e7 triangle–vertex pairs are also checked
+//     by the definition (every vertex on the inner side of every face plane, same tolerance).
 //
-// Point query (closestPoint): exact closest point over all triangles (best-first descent of the hierarchy,
-// exact point–triangle at the leaves).
+// Point query (closestPoint): exact closest point over all triangles (depth-first descent of the hierarchy,
+// nearer child first, pruned by the squared distance to the nodes' boxes; exact point–triangle at the leaves,
+// mesh/point_triangle.h).
 //  * feature = index of the triangle (in triangles(), i.e. after cleaning; sourceTriangle() maps it back to
 //    the input); param = the point's barycentric coordinates (b1, b2) in that triangle:
 //    point = (1 − b1 − b2)·v0 + b1·v1 + b2·v2. closestFeature() also gives the Voronoi feature (face, edge,
@@ -32,7 +35,7 @@
 //    when q is on the surface.
 //  * ties (several closest points at exactly the same distance) go to the first triangle the deterministic
 //    traversal meets, so answers are reproducible across runs and threads.
-// inside(q): generalized winding number >= 1/2 (solids only; false for an open mesh). Far parts of the
+// inside(q): generalized winding number > 1/2 (solids only; false for an open mesh). Far parts of the
 // mesh are summed exactly through their boundary (see core/src/mesh/winding.h), not approximated.
 // support(d): for a convex mesh hill climbing over vertex neighbours (exact on a convex polytope); otherwise
 // a scan over all vertices (the convex hull's support point, O(vertices)).
@@ -133,8 +136,8 @@ class TriangleMesh final : public Model {
   double bvhBuildMicroseconds() const { return bvhMicros_.load(std::memory_order_acquire); }
 
  private:
-  void computeNormals();
-  void decideConvexity();
+  std::vector<double> computeNormals();  // returns each vertex's sum of corner angles (solids only)
+  void decideConvexity(const std::vector<double>& angleSums);
   Eigen::Vector3d pseudoNormal(int triangle, TriangleFeature f) const;
   bool insideByWinding(const Eigen::Vector3d& q) const;
   const mesh::WindingData& winding() const;

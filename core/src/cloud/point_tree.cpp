@@ -11,7 +11,7 @@ std::size_t PointTree::memoryBytes() const {
 
 PointTree buildPointTree(const std::vector<Eigen::Vector3d>& points) {
   std::vector<mesh::BvhItem> items(points.size());
-  for (std::size_t i = 0; i < points.size(); ++i) items[i] = {points[i], points[i], points[i]};
+  for (std::size_t i = 0; i < points.size(); ++i) items[i] = {points[i], points[i]};
   PointTree t;
   t.tree = mesh::buildBvh(items, 4);
   t.ranges = mesh::nodeRanges(t.tree);

@@ -4,17 +4,26 @@
 // The polytope P is the convex hull of support points of D = A − B, so P ⊂ D. While P contains the origin,
 // the origin's distance to P's closest face is a lower bound on the depth (dist(0, ∂D) >= dist(0, ∂P)), and
 // h_D(n) for any unit n is an upper bound. Each step evaluates the support along the closest face's normal and
-// adds it to P, replacing the faces it sees (found by a depth-first walk over face adjacency, the horizon
-// being the boundary of the walked region). Robustness measures:
-//  * the start polytope is the hull of the GJK simplex, the six axis supports and the supports along ± the
-//    normal of the largest seed triangle, so it is full-dimensional even when GJK stopped with a point, a
-//    segment or a triangle (contact or a flat simplex), and it still contains the GJK simplex (and so the
-//    origin whenever GJK found it inside);
-//  * an expansion is committed only if the horizon is one simple loop and every new face is non-degenerate
-//    and faces away from a fixed interior point; otherwise EPA stops with the bounds it has (never a broken
-//    polytope);
-//  * a face with the origin on its outer side (GJK stopped just short of enclosing it) is expanded like any
-//    other; a support with h_D(n) < 0 proves the sets apart, and the caller keeps the GJK answer.
+// adds it to P, replacing the faces it sees (a walk over face adjacency; the horizon is the boundary of the
+// walked region). Convergence is linear on curved boundaries (~40 steps per factor 1000 on a sphere) and
+// finite on polytopes.
+//
+// Robustness, each measure prompted by a failure seen in randomised stress runs:
+//  * start polytope: the hull of the GJK simplex, the six axis supports and the supports along ± the normal of
+//    the largest seed triangle: full-dimensional even when GJK stopped with a point, segment or triangle, and
+//    it still contains the GJK simplex (hence the origin whenever GJK found it inside). Seeds that nearly
+//    duplicate one already taken (a needle's supports) are skipped, except GJK's own points;
+//  * an expansion is committed only if the horizon is one simple loop, every new face is non-degenerate, faces
+//    away from a fixed interior point, leaves no neighbouring vertex clearly above it (no fold), and is not
+//    closer to the origin than the current closest face (impossible in exact arithmetic: a sign of a normal
+//    tilted by rounding). Otherwise it is retried with coarser visibility thresholds, then refused: EPA stops
+//    with the bounds it has, never with a broken polytope;
+//  * the origin just outside P (contact, or GJK stopping short of enclosing it) is handled: faces beyond which
+//    it lies are expanded like any other, and P's nearest point to the origin (a real pair of points) gives an
+//    upper bound, so contact comes out as ~0 with bounds straddling it;
+//  * the answer: the closest face when converged or stalled by rounding; the best support direction when the
+//    iteration cap stopped a still-progressing run (much better where the minimum translation direction is not
+//    unique, e.g. concentric spheres, where the faces would have to tile the whole sphere).
 #include "convex/gjk.h"
 
 #include <algorithm>
@@ -30,7 +39,8 @@ namespace {
 using Eigen::Vector3d;
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
-constexpr double kFold = 64;  // a vertex this many rounding levels above a new neighbouring face is a fold
+constexpr double kFold = 4096;  // a vertex this many rounding levels above a new neighbouring face is a fold
+                                // (nearly coplanar points on flat parts of D reach ~100; real folds ~1e13)
 
 struct Face {
   int v[3] = {0, 0, 0};        // counter-clockwise seen from outside: edge k runs v[k] → v[k+1]
@@ -424,13 +434,15 @@ EpaResult epa(const SupportFn& a, const SupportFn& b, const std::vector<SupportP
       }
     }
   } else {
-    // The origin is just outside the polytope (contact): the polytope's closest point is the answer.
+    // The origin is just outside the polytope (contact, to the tolerance): the polytope's nearest point q gives
+    // the distance and the points; the normal is the closest face's (by plane), along which the support was
+    // evaluated, so it certifies the answer (q's own direction is only as good as the polytope there).
     double dist = 0;
     witnessFace = nearestFace(dist);
     const SubSimplex sub = closestOnFace(poly.faces[witnessFace]);
     for (int i = 0; i < sub.count; ++i) lambda[sub.index[i]] = sub.lambda[i];
     r.distance = sub.v.norm();
-    r.normal = r.distance > 64 * eps ? Vector3d(-sub.v / r.distance) : poly.faces[witnessFace].n;
+    r.normal = face.n;
   }
   const double total = lambda[0] + lambda[1] + lambda[2];
   if (!(total > 0)) lambda[0] = lambda[1] = lambda[2] = 1;

@@ -248,36 +248,52 @@ GjkResult gjk(const SupportFn& a, const SupportFn& b, const SupportPoint& start,
 ConvexDistance convexDistance(const SupportFn& a, const SupportFn& b, double tolerance, int maxIterations) {
   ConvexDistance out;
   ConvexScale scale;
-  // Supports of D = A − B along ±x, ±y, ±z: the bounding box of D (its size sets the default tolerance), six
-  // separating-axis lower bounds, and seeds for EPA.
-  std::vector<SupportPoint> axis(6);
-  Vector3d lo, hi;
+  // Supports of D = A − B along ±x, ±y, ±z, computed only when needed: they give D's bounding box (its size
+  // sets the default tolerance for tolerance <= 0), six separating-axis lower bounds, and seeds for EPA.
+  std::vector<SupportPoint> axis;
   double lower = -kInf;
-  for (int i = 0; i < 3; ++i) {
-    const Vector3d e = Vector3d::Unit(i);
-    axis[2 * i] = minkowskiSupport(a, b, e);
-    axis[2 * i + 1] = minkowskiSupport(a, b, -e);
-    hi[i] = axis[2 * i].w[i];
-    lo[i] = axis[2 * i + 1].w[i];
-    lower = std::max({lower, -hi[i], lo[i]});
-    scale.coordMag = std::max({scale.coordMag, maxAbs(axis[2 * i]), maxAbs(axis[2 * i + 1])});
-  }
-  scale.size = (hi - lo).norm();
+  auto computeAxis = [&]() {
+    axis.resize(6);
+    Vector3d lo, hi;
+    for (int i = 0; i < 3; ++i) {
+      const Vector3d e = Vector3d::Unit(i);
+      axis[2 * i] = minkowskiSupport(a, b, e);
+      axis[2 * i + 1] = minkowskiSupport(a, b, -e);
+      hi[i] = axis[2 * i].w[i];
+      lo[i] = axis[2 * i + 1].w[i];
+      lower = std::max({lower, -hi[i], lo[i]});
+      scale.coordMag = std::max({scale.coordMag, maxAbs(axis[2 * i]), maxAbs(axis[2 * i + 1])});
+    }
+    scale.size = (hi - lo).norm();
+  };
+  if (!(tolerance > 0)) computeAxis();
   const double tol = tolerance > 0 ? tolerance : std::max(1e-15 * scale.size, scale.roundoff());
   maxIterations = std::max(maxIterations, 1);
 
-  // Start from the support of D opposite the centre of its box: a point of D on the origin's side.
-  const Vector3d centre = 0.5 * (lo + hi);
-  SupportPoint start = axis[0];
-  for (const SupportPoint& s : axis)
-    if (s.w.squaredNorm() < start.w.squaredNorm()) start = s;
-  if (centre.squaredNorm() > 0) {
-    const SupportPoint s = minkowskiSupport(a, b, -centre);
-    if (s.w.squaredNorm() < start.w.squaredNorm()) start = s;
-  }
-
-  const GjkResult g = gjk(a, b, start, lower, tol, maxIterations, scale);
+  // Any point of D starts GJK. (Starting from the support opposite the centre of D's box saves a few
+  // iterations on round shapes but costs six support pairs up front: slower overall on boxes and cones.)
+  const SupportPoint start = minkowskiSupport(a, b, -Vector3d::UnitX());
+  GjkResult g = gjk(a, b, start, lower, tol, maxIterations, scale);
   out.iterations = g.iterations;
+  // A separated run can stall on a degenerate simplex (a box vertex against a rim, a needle-thin triangle)
+  // before its bounds meet. Restarting from a single support point along the best direction so far drops the
+  // degenerate simplex and keeps the proved lower bound; keep the tighter answer.
+  for (int restart = 0; restart < 4 && !g.converged && !g.originInside && g.lowerBound > 0 &&
+                        out.iterations < maxIterations;
+       ++restart) {
+    const SupportPoint fresh = minkowskiSupport(a, b, -g.v);
+    GjkResult again = gjk(a, b, fresh, g.lowerBound, tol, maxIterations - out.iterations, scale);
+    out.iterations += again.iterations;
+    if (again.originInside) break;  // rounding-level contact: let the first answer and EPA decide
+    again.lowerBound = std::max(again.lowerBound, g.lowerBound);
+    if (again.upperBound <= g.upperBound) {
+      g = again;
+    } else {
+      g.lowerBound = again.lowerBound;
+      g.converged = g.upperBound - g.lowerBound <= tol && g.witnessGap <= tol;
+      if (again.iterations <= 1) break;  // no progress possible from here
+    }
+  }
   lower = g.lowerBound;
   double upper = g.upperBound;
   double witnessGap = g.witnessGap;
@@ -289,6 +305,7 @@ ConvexDistance convexDistance(const SupportFn& a, const SupportFn& b, double tol
   bool useEpa = false;
   EpaResult e;
   if (g.originInside || (!g.converged && g.lowerBound < 0)) {
+    if (axis.empty()) computeAxis();
     std::vector<SupportPoint> seeds(g.simplex, g.simplex + g.count);
     seeds.insert(seeds.end(), axis.begin(), axis.end());
     e = epa(a, b, seeds, g.count, tol, std::max(maxIterations - g.iterations, 1), scale);
@@ -316,13 +333,8 @@ ConvexDistance convexDistance(const SupportFn& a, const SupportFn& b, double tol
     // The normal from v, not from pointB − pointA: the points are combinations of coordinates of the sets'
     // size, so at tiny distances their difference has a noisy direction, while v (a face or edge projection)
     // keeps it.
-    if (g.v.squaredNorm() > 0) {
-      out.normal = -g.v.normalized();
-    } else if (centre.squaredNorm() > 0) {
-      out.normal = -centre.normalized();  // contact with coinciding points: any unit vector is allowed
-    } else {
-      out.normal = Vector3d::UnitZ();
-    }
+    // With coinciding points (contact; EPA's polytope was flat) any unit vector is allowed.
+    out.normal = g.v.squaredNorm() > 0 ? Vector3d(-g.v.normalized()) : Vector3d::UnitZ();
   }
   // Re-centre the points on the normal (a sideways move of rounding size: ~1e-12 of the sets' size at worst, on
   // sliver simplices) so that pointB − pointA = distance·normal holds to the last bits.

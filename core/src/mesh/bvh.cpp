@@ -77,11 +77,13 @@ BoxF centroidBounds(const Work& w, std::uint32_t b, std::uint32_t e) {
 // returns mid with both children's centroid bounds, or returns e when no plane separates the items.
 std::uint32_t sahSplit(Work& w, std::uint32_t b, std::uint32_t e, int axis, float cmin, float extent, Task& left,
                        Task& right) {
-  const float scale = static_cast<float>(kBins) / extent;
+  // Fewer bins for small nodes: most nodes are small, and 16 bins for 8 items are mostly empty sweeps.
+  const int bins = static_cast<int>(std::min<std::uint32_t>(kBins, std::max<std::uint32_t>(4, (e - b) / 2)));
+  const float scale = static_cast<float>(bins) / extent;
   if (!std::isfinite(scale)) return e;
   const auto binOf = [&](const WorkItem& it) {
     const int k = static_cast<int>((0.5f * (it.lo[axis] + it.hi[axis]) - cmin) * scale);
-    return std::min(std::max(k, 0), kBins - 1);
+    return std::min(std::max(k, 0), bins - 1);
   };
   BoxF boxes[kBins], cboxes[kBins];
   std::uint32_t counts[kBins] = {};
@@ -98,7 +100,7 @@ std::uint32_t sahSplit(Work& w, std::uint32_t b, std::uint32_t e, int axis, floa
   std::uint32_t rightCount[kBins];
   BoxF acc;
   std::uint32_t n = 0;
-  for (int k = kBins - 1; k > 0; --k) {
+  for (int k = bins - 1; k > 0; --k) {
     acc.extend(boxes[k]);
     n += counts[k];
     rightArea[k] = acc.area();
@@ -108,7 +110,7 @@ std::uint32_t sahSplit(Work& w, std::uint32_t b, std::uint32_t e, int axis, floa
   std::uint32_t leftCount = 0;
   float bestCost = kInfF;
   int bestPlane = -1;
-  for (int k = 1; k < kBins; ++k) {  // plane between bins k − 1 and k
+  for (int k = 1; k < bins; ++k) {  // plane between bins k − 1 and k
     lbox.extend(boxes[k - 1]);
     leftCount += counts[k - 1];
     if (leftCount == 0 || rightCount[k] == 0) continue;
@@ -119,7 +121,7 @@ std::uint32_t sahSplit(Work& w, std::uint32_t b, std::uint32_t e, int axis, floa
     }
   }
   if (bestPlane < 0) return e;
-  for (int k = 0; k < kBins; ++k) (k < bestPlane ? left : right).centroids.extend(cboxes[k]);
+  for (int k = 0; k < bins; ++k) (k < bestPlane ? left : right).centroids.extend(cboxes[k]);
   return w.partition(b, e, [&](const WorkItem& it) { return binOf(it) < bestPlane; });
 }
 
@@ -135,8 +137,17 @@ Bvh buildBvh(const std::vector<BvhItem>& items, int maxLeafSize) {
   Work w;
   w.items.resize(n);
   w.ids.resize(n);
-  const auto lane = [](const Eigen::Vector3d& v) {
-    return Lane4(static_cast<float>(v.x()), static_cast<float>(v.y()), static_cast<float>(v.z()), 0.0f);
+  // Single precision relative to the centre of everything, so a small model far from its origin keeps its
+  // detail (floats of raw coordinates near 1e4 would merge features 1e-3 apart).
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  for (const BvhItem& it : items) {
+    lo = lo.cwiseMin(it.lo);
+    hi = hi.cwiseMax(it.hi);
+  }
+  const Eigen::Vector3d origin = n > 0 ? Eigen::Vector3d(0.5 * (lo + hi)) : Eigen::Vector3d::Zero();
+  const auto lane = [&origin](const Eigen::Vector3d& v) {
+    const Eigen::Vector3d r = v - origin;
+    return Lane4(static_cast<float>(r.x()), static_cast<float>(r.y()), static_cast<float>(r.z()), 0.0f);
   };
   for (std::uint32_t i = 0; i < n; ++i) {
     w.items[i] = {lane(items[i].lo), lane(items[i].hi)};
@@ -248,7 +259,6 @@ MeshBvh buildMeshBvh(const std::vector<Eigen::Vector3d>& vertices,
     const Eigen::Vector3d& c = vertices[triangles[t][2]];
     items[t].lo = a.cwiseMin(b).cwiseMin(c);
     items[t].hi = a.cwiseMax(b).cwiseMax(c);
-    items[t].centroid = (a + b + c) / 3.0;
   }
   MeshBvh m;
   m.tree = buildBvh(items, 4);
@@ -257,16 +267,11 @@ MeshBvh buildMeshBvh(const std::vector<Eigen::Vector3d>& vertices,
   m.spheres.resize(nodes);
   m.cones.resize(nodes);
 
-  // Small nodes (the many near the leaves) get their volumes from a scan of their own triangles, laid out in
-  // slot order first so that the scans are contiguous; larger nodes merge their children's volumes (looser
-  // but O(1) each). Children are stored after their parents, so a reverse sweep sees them first.
-  constexpr std::uint32_t kScanBelow = 64;
+  // Small nodes (the many near the leaves) get their volumes from a scan of their own triangles; larger nodes
+  // merge their children's volumes (looser, but O(1) each, so the whole pass is O(n)). Children are stored
+  // after their parents, so a reverse sweep sees them first.
+  constexpr std::uint32_t kScanBelow = 32;
   const std::vector<std::uint32_t>& order = m.tree.order;
-  std::vector<Eigen::Vector3d> corners(3 * order.size()), normals(order.size());
-  for (std::size_t s = 0; s < order.size(); ++s) {
-    for (std::size_t k = 0; k < 3; ++k) corners[3 * s + k] = vertices[triangles[order[s]][k]];
-    normals[s] = faceNormals[order[s]];
-  }
   std::vector<Eigen::Vector3d> normalSums(nodes);
   for (std::size_t i = nodes; i-- > 0;) {
     const BvhNode& node = m.tree.nodes[i];
@@ -278,21 +283,22 @@ MeshBvh buildMeshBvh(const std::vector<Eigen::Vector3d>& vertices,
     double reach = 0;
     if (scan) {
       double farthest = 0;
-      for (std::size_t v = 3 * static_cast<std::size_t>(begin); v < 3 * static_cast<std::size_t>(end); ++v)
-        farthest = std::max(farthest, (corners[v] - c).squaredNorm());
+      for (std::uint32_t s = begin; s < end; ++s)
+        for (std::uint32_t v : triangles[order[s]]) farthest = std::max(farthest, (vertices[v] - c).squaredNorm());
       reach = std::sqrt(farthest);
     } else {
       for (std::uint32_t child : {node.first, node.first + 1})
         reach = std::max(reach, (m.spheres[child].center - c).norm() + m.spheres[child].radius);
       const Eigen::Vector3d half(0.5 * (node.hi[0] - node.lo[0]), 0.5 * (node.hi[1] - node.lo[1]),
                                  0.5 * (node.hi[2] - node.lo[2]));
-      reach = std::min(reach, half.norm());
+      // The stored centre is the true box centre up to its rounding (ε of its coordinates), hence the pad.
+      reach = std::min(reach, half.norm() + 4.0 * kEps * c.cwiseAbs().sum());
     }
     m.spheres[i] = {c, paddedRadius(reach)};
     // Cone: the axis is the mean unit normal; a sum shorter than 1e-9 of the count means normals all around.
     Eigen::Vector3d sum = Eigen::Vector3d::Zero();
     if (scan) {
-      for (std::uint32_t s = begin; s < end; ++s) sum += normals[s];
+      for (std::uint32_t s = begin; s < end; ++s) sum += faceNormals[order[s]];
     } else {
       sum = normalSums[node.first] + normalSums[node.first + 1];
     }
@@ -307,7 +313,7 @@ MeshBvh buildMeshBvh(const std::vector<Eigen::Vector3d>& vertices,
     cone.axis = sum / length;
     if (scan) {
       double lowest = 1.0;
-      for (std::uint32_t s = begin; s < end; ++s) lowest = std::min(lowest, cone.axis.dot(normals[s]));
+      for (std::uint32_t s = begin; s < end; ++s) lowest = std::min(lowest, cone.axis.dot(faceNormals[order[s]]));
       // Padded so rounding of the dot products (a few ε) cannot leave a normal outside: acos turns an error δ
       // of the cosine into δ/sin θ, at most sqrt(2δ) < 1e-7 near θ = 0, and < 64ε where the cosine is below 0.9.
       const double pad = lowest > 0.9 ? 1e-7 : 64.0 * kEps;

@@ -5,10 +5,13 @@
 // first + 1), a leaf holds `count` consecutive slots of `order` (slot → item). Every node is a contiguous slot
 // range, so "is item x below node n" is a range test on the slot of x.
 //
-// Build (top-down, iterative, O(n log n)): binned surface-area heuristic on the centroids along the axis of
-// largest centroid extent (16 bins), leaves of at most 4 items; below depth 48 (never reached on sane input)
-// or when all centroids coincide it splits at the median instead, so the depth stays below 48 + 32 and the
-// fixed traversal stacks cannot overflow.
+// Build (top-down, iterative, O(n log n)): binned surface-area heuristic on the items' box centres along the
+// axis of largest centre extent (16 bins), leaves of at most 4 items; below depth 48 (never reached on sane
+// input) or when all centres coincide it splits at the median instead, so the depth stays below 48 + 32 and
+// the fixed traversal stacks cannot overflow. The split decisions run in single precision on a compact copy
+// of the items that is moved (not indexed) while splitting, so every pass is a sequential scan; the nodes'
+// boxes are then computed exactly, bottom-up, from the items' double boxes. Measured against a Morton-order
+// (LBVH) build: ~2× the build time, but 20–25 % fewer leaves visited by point queries.
 //
 // Bounding volumes: every node has an exact AABB of its items (tight, computed from the items' boxes). The
 // mesh hierarchy adds per node, in parallel arrays so further volume types (OBB, RSS for mesh–mesh searches)
@@ -56,9 +59,9 @@ struct BvhNode {
   }
 };
 
-/// An item to build over: its box and the point it is sorted by.
+/// An item to build over: its box (its centre is the point the build sorts it by).
 struct BvhItem {
-  Eigen::Vector3d lo, hi, centroid;
+  Eigen::Vector3d lo, hi;
 };
 
 struct Bvh {

@@ -73,17 +73,14 @@ std::vector<std::uint32_t> keptTriangles(const std::vector<Eigen::Vector3d>& ver
   struct Key {
     std::uint32_t mid, high, index;
   };
-  const auto sortedTriple = [&](std::uint32_t t) {
-    Triangle s = triangles[t];
-    std::sort(s.begin(), s.end());
-    return s;
-  };
+  std::vector<Triangle> sorted(nonDegenerate.size());
+  for (std::size_t i = 0; i < nonDegenerate.size(); ++i) {
+    sorted[i] = triangles[nonDegenerate[i]];
+    std::sort(sorted[i].begin(), sorted[i].end());
+  }
   const auto buckets = bucketBy<Key>(
-      vertices.size(), nonDegenerate.size(), [&](std::size_t i) { return sortedTriple(nonDegenerate[i])[0]; },
-      [&](std::size_t i) {
-        const Triangle s = sortedTriple(nonDegenerate[i]);
-        return Key{s[1], s[2], static_cast<std::uint32_t>(i)};
-      });
+      vertices.size(), nonDegenerate.size(), [&](std::size_t i) { return sorted[i][0]; },
+      [&](std::size_t i) { return Key{sorted[i][1], sorted[i][2], static_cast<std::uint32_t>(i)}; });
   std::vector<std::uint8_t> drop(nonDegenerate.size(), 0);
   std::vector<Key> group;
   for (std::size_t v = 0; v < vertices.size(); ++v) {

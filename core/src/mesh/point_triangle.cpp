@@ -86,7 +86,7 @@ inline ExactDiff exactDifference(const Eigen::Vector3d& a, const Eigen::Vector3d
 // One edge of the boundary: clamped projection onto segment p0 → p1. A clamped end is the vertex itself
 // (bit for bit), so vertex answers are exact.
 struct EdgeAnswer {
-  Eigen::Vector3d point;
+  Eigen::Vector3d point, gap;
   double squaredDistance;
   double t;  // 0 at p0, 1 at p1
 };
@@ -99,16 +99,17 @@ inline EdgeAnswer onSegment(const Eigen::Vector3d& q, const Eigen::Vector3d& p0,
   if (!(we > 0) || !(ee > 0)) {
     a.point = p0;
     a.t = 0;
-    a.squaredDistance = w.squaredNorm();
+    a.gap = w;
   } else if (we >= ee) {
     a.point = p1;
     a.t = 1;
-    a.squaredDistance = (q - p1).squaredNorm();
+    a.gap = q - p1;
   } else {
     a.t = we / ee;
     a.point = p0 + a.t * e;
-    a.squaredDistance = (q - a.point).squaredNorm();
+    a.gap = w - a.t * e;
   }
+  a.squaredDistance = a.gap.squaredNorm();
   return a;
 }
 
@@ -125,6 +126,17 @@ Eigen::Vector3d accurateCross(const Eigen::Vector3d& v0, const Eigen::Vector3d& 
 }
 
 bool zeroArea(const Eigen::Vector3d& v0, const Eigen::Vector3d& v1, const Eigen::Vector3d& v2) {
+  // Fast filter: the plain cross product is within 8ε of its terms' size of the exact one (rounded edge
+  // vectors, two products, one difference), so a component beyond that is certainly non-zero.
+  {
+    const Eigen::Vector3d a = v1 - v0, b = v2 - v0;
+    for (int i = 0; i < 3; ++i) {
+      const int j = (i + 1) % 3, k = (i + 2) % 3;
+      const double p = a[j] * b[k], q = a[k] * b[j];
+      if (std::abs(p - q) > 8.0 * kEps * (std::abs(p) + std::abs(q)) + 64.0 * std::numeric_limits<double>::min())
+        return false;
+    }
+  }
   const ExactDiff d1 = exactDifference(v1, v0), d2 = exactDifference(v2, v0);
   for (int i = 0; i < 3; ++i) {
     const int j = (i + 1) % 3, k = (i + 2) % 3;
@@ -163,7 +175,8 @@ TriangleClosest closestOnTriangle(const Eigen::Vector3d& q, const Eigen::Vector3
     const double s20 = n.dot((v0 - v2).cross(q - v2));
     if (s01 > 0 && s12 > 0 && s20 > 0) {
       const double h = n.dot(w0);
-      r.point = q - h * n;
+      r.gap = h * n;
+      r.point = q - r.gap;
       r.squaredDistance = h * h;
       r.feature = TriangleFeature::Face;
       const double total = s01 + s12 + s20;
@@ -179,6 +192,7 @@ TriangleClosest closestOnTriangle(const Eigen::Vector3d& q, const Eigen::Vector3
   if (a20.squaredDistance < (best == 0 ? a01.squaredDistance : a12.squaredDistance)) best = 2;
   const EdgeAnswer& a = best == 0 ? a01 : (best == 1 ? a12 : a20);
   r.point = a.point;
+  r.gap = a.gap;
   r.squaredDistance = a.squaredDistance;
   using F = TriangleFeature;
   static constexpr F kEdge[3] = {F::Edge01, F::Edge12, F::Edge20};

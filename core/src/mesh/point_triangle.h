@@ -22,7 +22,10 @@ namespace unidist::mesh {
 
 struct TriangleClosest {
   Eigen::Vector3d point = Eigen::Vector3d::Zero();
-  double squaredDistance = 0;
+  /// q − point, computed from differences to the triangle's own vertices: it keeps its relative precision
+  /// when the model is far from its origin, where q − point of the rounded point would not.
+  Eigen::Vector3d gap = Eigen::Vector3d::Zero();
+  double squaredDistance = 0;  ///< |gap|²
   TriangleFeature feature = TriangleFeature::Face;
   double b1 = 0, b2 = 0;  ///< barycentric coordinates of v1 and v2 (v0's is 1 − b1 − b2)
 };

@@ -53,6 +53,11 @@ mesh::TriangleClosest nearestOnMesh(const mesh::MeshBvh& bvh, const std::vector<
       }
     }
   });
+  if (triangle < 0) {  // only for a non-finite q (no distance is < inf): answer with triangle 0, never UB
+    triangle = 0;
+    const TriangleMesh::Triangle& tri = triangles[0];
+    best = mesh::closestOnTriangle(q, vertices[tri[0]], vertices[tri[1]], vertices[tri[2]], normals[0]);
+  }
   return best;
 }
 
@@ -82,7 +87,7 @@ TriangleMesh::TriangleMesh(std::vector<Eigen::Vector3d> vertices, std::vector<Tr
   const std::vector<std::uint32_t> id = mesh::weldExact(vertices, distinct);
   stats_.weldedVertices = distinct;
   std::vector<Eigen::Vector3d> welded(distinct);
-  for (std::size_t i = 0; i < vertices.size(); ++i) welded[id[i]] = vertices[i];
+  for (std::size_t i = vertices.size(); i-- > 0;) welded[id[i]] = vertices[i];  // the first copy wins (-0 vs +0)
   for (Triangle& t : triangles)
     for (std::uint32_t& v : t) v = id[v];
   std::vector<std::uint32_t> kept =
@@ -128,43 +133,41 @@ TriangleMesh::TriangleMesh(std::vector<Eigen::Vector3d> vertices, std::vector<Tr
   stats_.misorientedEdges = topo.misoriented;
   twin_ = std::move(topo.twin);
 
-  computeNormals();
-  decideConvexity();
+  decideConvexity(computeNormals());
 }
 
-void TriangleMesh::computeNormals() {
+std::vector<double> TriangleMesh::computeNormals() {
   faceNormals_.resize(triangles_.size());
   for (std::size_t t = 0; t < triangles_.size(); ++t) {
     const Triangle& tri = triangles_[t];
     faceNormals_[t] = mesh::accurateUnitNormal(vertices_[tri[0]], vertices_[tri[1]], vertices_[tri[2]]);
   }
-  if (!stats_.solid) return;
+  if (!stats_.solid) return {};
   // Angle-weighted vertex pseudo-normals (Bærentzen & Aanæs 2005): the sign of (q − p)·N is the side of q
   // whenever p is the closest point and the vertex is manifold.
   vertexPseudoNormals_.assign(vertices_.size(), Eigen::Vector3d::Zero());
+  std::vector<double> angleSums(vertices_.size(), 0.0);
   for (std::size_t t = 0; t < triangles_.size(); ++t) {
     const Triangle& tri = triangles_[t];
     for (int k = 0; k < 3; ++k) {
       const double angle =
           mesh::cornerAngle(vertices_[tri[k]], vertices_[tri[(k + 1) % 3]], vertices_[tri[(k + 2) % 3]]);
       vertexPseudoNormals_[tri[k]] += angle * faceNormals_[t];
+      angleSums[tri[k]] += angle;
     }
   }
-  // A sum of zero (only possible for a degenerate fan) falls back to the normal of a triangle at the vertex.
-  std::vector<Eigen::Vector3d> fallback(vertices_.size(), Eigen::Vector3d::UnitZ());
-  for (std::size_t t = 0; t < triangles_.size(); ++t)
-    for (std::uint32_t v : triangles_[t]) fallback[v] = faceNormals_[t];
-  for (std::size_t v = 0; v < vertices_.size(); ++v)
-    vertexPseudoNormals_[v] = prim::unitOr(vertexPseudoNormals_[v], fallback[v]);
+  // A sum of zero (only possible for a degenerate fan) stays zero: the side is then left to the winding number.
+  for (Eigen::Vector3d& n : vertexPseudoNormals_) n = prim::unitOr(n, Eigen::Vector3d::Zero());
   const std::vector<std::uint32_t> fans = mesh::fansPerVertex(vertices_.size(), triangles_, twin_);
   nonManifoldVertex_.assign(vertices_.size(), 0);
   for (std::size_t v = 0; v < vertices_.size(); ++v) {
     nonManifoldVertex_[v] = fans[v] > 1;
     stats_.nonManifoldVertices += fans[v] > 1;
   }
+  return angleSums;
 }
 
-void TriangleMesh::decideConvexity() {
+void TriangleMesh::decideConvexity(const std::vector<double>& angleSums) {
   stats_.convex = false;
   if (!stats_.solid || mesh::connectedComponents(triangles_.size(), twin_) != 1) return;
   const double tol = 1e-12 * bounds_.diagonal();
@@ -181,11 +184,7 @@ void TriangleMesh::decideConvexity() {
   }
   // Every vertex's triangles turn at most once around it (angle sum <= 2π): a locally convex closed surface
   // winding once is convex.
-  std::vector<double> angleSum(vertices_.size(), 0.0);
-  for (const Triangle& tri : triangles_)
-    for (int k = 0; k < 3; ++k)
-      angleSum[tri[k]] += mesh::cornerAngle(vertices_[tri[k]], vertices_[tri[(k + 1) % 3]], vertices_[tri[(k + 2) % 3]]);
-  for (double s : angleSum)
+  for (double s : angleSums)
     if (s > kTwoPi + 1e-9) return;
   // Small meshes: the definition itself, every vertex on the inner side of every face plane.
   if (static_cast<double>(triangles_.size()) * static_cast<double>(vertices_.size()) <= kExhaustiveConvexityPairs) {
@@ -252,7 +251,9 @@ Eigen::Vector3d TriangleMesh::pseudoNormal(int triangle, TriangleFeature f) cons
     case TriangleFeature::Edge20: {
       const std::uint32_t g = twin_[3 * t + (static_cast<int>(f) - static_cast<int>(TriangleFeature::Edge01))];
       if (g == mesh::kNoTwin) return n;
-      return prim::unitOr(n + faceNormals_[g / 3], n);  // both faces weigh π at an edge
+      // Both faces weigh π at an edge. Opposite normals (a fold) have no pseudo-normal: zero, and the
+      // caller decides the side by the winding number.
+      return prim::unitOr(n + faceNormals_[g / 3], Eigen::Vector3d::Zero());
     }
     default: {
       const int k = static_cast<int>(f) - static_cast<int>(TriangleFeature::Vertex0);
@@ -285,20 +286,20 @@ MeshPoint TriangleMesh::closestFeature(const Eigen::Vector3d& q) const {
   s.point = c.point;
   s.feature = t;
   s.param = {c.b1, c.b2};
-  const Eigen::Vector3d gap = q - c.point;
+  const Eigen::Vector3d& gap = c.gap;  // q − point, without the rounding of the point's coordinates
   const double d = prim::robustNorm(gap);
   if (!stats_.solid) {
     s.signedDistance = d;
     s.normal = prim::unitOr(gap, faceNormals_[static_cast<std::size_t>(t)]);
     return m;
   }
-  const Eigen::Vector3d pseudo = pseudoNormal(t, c.feature);
+  const Eigen::Vector3d pseudo = pseudoNormal(t, c.feature);  // zero where the feature has none
   if (!(d > 0)) {
     s.signedDistance = 0;
-    s.normal = pseudo;
+    s.normal = pseudo.squaredNorm() > 0 ? pseudo : faceNormals_[static_cast<std::size_t>(t)];
     return m;
   }
-  const Eigen::Vector3d u = prim::unitOr(gap, pseudo);
+  const Eigen::Vector3d u = prim::unitOr(gap, faceNormals_[static_cast<std::size_t>(t)]);
   const double cosine = u.dot(pseudo);
   bool in = cosine < 0;
   const bool atVertex = c.feature >= TriangleFeature::Vertex0;

@@ -60,7 +60,6 @@ ConvexDistance boxBox(const Vector3d& halfA, const Eigen::Isometry3d& X_WA, cons
     };
     out = convexDistance(supportA, supportB, tolerance, kMaxIterations);
     out.lowerBound = std::min(std::max(out.lowerBound, -minOverlap), out.distance);  // the best axis gap
-    out.converged = out.converged || (tolerance > 0 && out.upperBound - out.lowerBound <= tolerance);
   } else {
     // Overlap (or contact): depth = minOverlap along axis (the way B moves). Find the contact point of A and B
     // moved there.
@@ -75,13 +74,15 @@ ConvexDistance boxBox(const Vector3d& halfA, const Eigen::Isometry3d& X_WA, cons
     const GjkResult g = gjk(supportA, supportB, minkowskiSupport(supportA, supportB, axis),
                             -kInf, tol, kMaxIterations, scale);
     const Vector3d contact = 0.5 * (g.pointA + g.pointB);
-    out.distance = -depth;
+    out.distance = -depth + 0.0;  // +0, not −0, for exact contact
     out.normal = axis;
     out.pointA = contact;
     out.pointB = contact - shift;
     out.lowerBound = out.upperBound = out.distance;
     out.iterations = g.iterations;
-    out.converged = true;
+    // The depth is exact; the points are certified when GJK's two points met to the tolerance (a point of A
+    // that close to B, which only touches A, lies that close to A's boundary, and likewise for B).
+    out.converged = (g.pointA - g.pointB).norm() <= tol;
   }
   out.pointA = X_WA * out.pointA;
   out.pointB = X_WA * out.pointB;

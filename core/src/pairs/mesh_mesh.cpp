@@ -1,0 +1,353 @@
+#include "pairs/mesh_mesh.h"
+
+#include "cloud/point_tree.h"
+#include "generic/generic_distance.h"
+#include "mesh/bvh.h"
+#include "mesh/point_triangle.h"
+#include "mesh/triangle_triangle.h"
+#include "pairs/analytic.h"
+#include "unidist/mesh.h"
+#include "unidist/point_cloud.h"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace unidist::detail {
+namespace {
+
+/// One side of the search: its hierarchy and per-node balls.
+struct Side {
+  const mesh::Bvh* tree;
+  const std::vector<BoundingSphere>* spheres;
+};
+
+/// Best pair found so far, in A's frame.
+struct Best {
+  double distance = std::numeric_limits<double>::infinity();
+  Eigen::Vector3d pA = Eigen::Vector3d::Zero(), pB = Eigen::Vector3d::Zero();
+  int triA = -1;          ///< A's triangle (mesh) or point, for a normal at distance 0
+  bool intersecting = false;
+};
+
+struct Traversal {
+  double lowerBound = 0;  ///< proved lower bound on the minimum (before rounding slack)
+  long leafPairs = 0;
+  long nodePairs = 0;  ///< node pairs expanded or evaluated (leaf pairs included)
+  bool exhausted = false;
+};
+
+/// Depth-first search over node pairs, nearer pair first, pruning pairs whose lower bound is within `prune`
+/// of the best distance. leaf(nodeA, nodeB, best) evaluates a leaf pair exactly.
+template <class LeafFn>
+Traversal traverse(const Side& A, const Side& B, const Eigen::Isometry3d& X_AB, double prune, long budget, Best& best,
+                   LeafFn&& leaf) {
+  const mesh::BvhNode* na = A.tree->nodes.data();
+  const mesh::BvhNode* nb = B.tree->nodes.data();
+  const BoundingSphere* sa = A.spheres->data();
+  const BoundingSphere* sb = B.spheres->data();
+  const Eigen::Matrix3d R = X_AB.linear();
+  const Eigen::Matrix3d absR = R.cwiseAbs();
+  const Eigen::Vector3d t = X_AB.translation();
+
+  auto lower = [&](std::uint32_t i, std::uint32_t j) {
+    const Eigen::Vector3d cb = R * sb[j].center + t;
+    const double ball = (sa[i].center - cb).norm() - sa[i].radius - sb[j].radius;
+    // B's box in A's frame (the box of the rotated box) against A's box.
+    const mesh::BvhNode& x = na[i];
+    const mesh::BvhNode& y = nb[j];
+    const Eigen::Vector3d yc(0.5 * (y.lo[0] + y.hi[0]), 0.5 * (y.lo[1] + y.hi[1]), 0.5 * (y.lo[2] + y.hi[2]));
+    const Eigen::Vector3d yh(0.5 * (y.hi[0] - y.lo[0]), 0.5 * (y.hi[1] - y.lo[1]), 0.5 * (y.hi[2] - y.lo[2]));
+    const Eigen::Vector3d c = R * yc + t;
+    const Eigen::Vector3d h = absR * yh;
+    double s = 0;
+    for (int k = 0; k < 3; ++k) {
+      const double below = x.lo[k] - (c[k] + h[k]), above = (c[k] - h[k]) - x.hi[k];
+      const double g = below > 0 ? below : (above > 0 ? above : 0.0);
+      s += g * g;
+    }
+    return std::max(ball, std::sqrt(s));
+  };
+
+  struct Entry {
+    std::uint32_t a, b;
+    double lb;
+    bool operator<(const Entry& o) const { return lb > o.lb; }  // min-heap on the lower bound
+  };
+  Traversal out;
+  double minPruned = std::numeric_limits<double>::infinity();
+  auto children = [&](const Entry& e, Entry& c0, Entry& c1) {
+    const mesh::BvhNode& x = na[e.a];
+    const mesh::BvhNode& y = nb[e.b];
+    // Split the larger node (by ball radius) that is not a leaf.
+    const bool splitA = !x.leaf() && (y.leaf() || sa[e.a].radius >= sb[e.b].radius);
+    if (splitA) {
+      c0 = {x.first, e.b, lower(x.first, e.b)};
+      c1 = {x.first + 1, e.b, lower(x.first + 1, e.b)};
+    } else {
+      c0 = {e.a, y.first, lower(e.a, y.first)};
+      c1 = {e.a, y.first + 1, lower(e.a, y.first + 1)};
+    }
+    if (c0.lb > c1.lb) std::swap(c0, c1);
+  };
+  // 1. Quick descent: the nearer child pair all the way down gives a first upper bound.
+  {
+    Entry e{0, 0, 0.0};
+    while (!(na[e.a].leaf() && nb[e.b].leaf())) {
+      Entry c0, c1;
+      children(e, c0, c1);
+      e = c0;
+      ++out.nodePairs;
+    }
+    ++out.leafPairs;
+    leaf(e.a, e.b, best);
+  }
+  // 2. Best first: the pair with the smallest lower bound next; stop when it is within `prune` of the best.
+  std::vector<Entry> heap;
+  heap.reserve(256);
+  heap.push_back({0, 0, lower(0, 0)});
+  while (!heap.empty() && best.distance > 0) {
+    std::pop_heap(heap.begin(), heap.end());
+    const Entry e = heap.back();
+    heap.pop_back();
+    if (e.lb >= best.distance - prune) {
+      minPruned = std::min(minPruned, e.lb);  // every pair left has a larger bound
+      break;
+    }
+    if (out.leafPairs >= budget) {
+      out.exhausted = true;
+      minPruned = std::min(minPruned, e.lb);
+      break;
+    }
+    ++out.nodePairs;
+    if (na[e.a].leaf() && nb[e.b].leaf()) {
+      ++out.leafPairs;
+      leaf(e.a, e.b, best);
+      continue;
+    }
+    Entry c[2];
+    children(e, c[0], c[1]);
+    for (const Entry& ch : c) {
+      if (ch.lb < best.distance - prune) {
+        heap.push_back(ch);
+        std::push_heap(heap.begin(), heap.end());
+      } else {
+        minPruned = std::min(minPruned, ch.lb);
+      }
+    }
+  }
+  out.lowerBound = std::min(minPruned, best.distance);
+  return out;
+}
+
+/// Scale of the coordinates in the computation (for the rounding slack).
+double coordinateScale(const Model& a, const Model& b, const Eigen::Isometry3d& X_AB) {
+  const BoundingSphere sa = a.localBoundingSphere(), sb = b.localBoundingSphere();
+  return sa.center.norm() + sa.radius + (X_AB * sb.center).norm() + sb.radius + sb.center.norm();
+}
+
+DistanceResult finish(const PosedModel& a, const Best& best, const Traversal& tr, double scale, const QueryContext& ctx,
+                      const Eigen::Vector3d& zeroNormal_A, const char* method) {
+  DistanceResult r;
+  r.method = method;
+  r.iterations = static_cast<int>(std::min<long>(tr.nodePairs, std::numeric_limits<int>::max()));
+  r.pointA = a.toWorld(best.pA);
+  r.pointB = a.toWorld(best.pB);
+  const Eigen::Vector3d gap = r.pointB - r.pointA;
+  const double g = gap.norm();
+  if (best.distance > 0 && g > 0) {
+    r.distance = g;
+    r.normal = gap / g;
+  } else {
+    r.distance = 0;
+    r.pointB = r.pointA;
+    r.normal = a.dirToWorld(zeroNormal_A);
+  }
+  const double slack = roundingSlack(scale + r.distance);
+  r.upperBound = r.distance + slack;
+  r.lowerBound = std::max(0.0, std::min(tr.lowerBound, r.distance) - slack);
+  if (r.distance == 0) r.lowerBound = 0, r.upperBound = 0;
+  if (tr.exhausted) r.status = Status::Bounded;
+  else settleStatus(r, ctx.tolerance);
+  return r;
+}
+
+long budgetOf(const QueryContext& ctx) { return std::max<long>(1, static_cast<long>(ctx.maxIterations) * 16); }
+
+double pruneOf(const QueryContext& ctx, double scale) {
+  // Prune within the tolerance less the slack the bounds will lose to rounding.
+  return std::max(0.0, 0.5 * ctx.tolerance - 2 * roundingSlack(scale));
+}
+
+/// Whether solid S contains any of the given points (in S's frame after X_SP).
+bool solidContainsAny(const Model& solid, const std::vector<Eigen::Vector3d>& points, const Eigen::Isometry3d& X_SP) {
+  const Aabb box = solid.localBounds();
+  for (const Eigen::Vector3d& p : points) {
+    const Eigen::Vector3d q = X_SP * p;
+    if ((q.array() < box.min.array()).any() || (q.array() > box.max.array()).any()) continue;
+    if (solid.inside(q)) return true;
+  }
+  return false;
+}
+
+/// The generic routine for an overlap: distance <= 0 is proved by the touching/crossing surfaces.
+DistanceResult overlap(const PosedModel& a, const PosedModel& b, const QueryContext& ctx, bool touching,
+                       PairFn fn = nullptr) {
+  DistanceResult r = fn ? fn(a, b, ctx) : genericPair(a, b, ctx);
+  if (touching) {
+    if (r.distance > 0) {
+      r.distance = 0;
+      r.pointB = r.pointA;
+    }
+    r.upperBound = std::min(r.upperBound, 0.0);
+    r.lowerBound = std::min(r.lowerBound, r.upperBound);
+    settleStatus(r, ctx.tolerance);
+  }
+  return r;
+}
+
+}  // namespace
+
+DistanceResult meshMesh(const PosedModel& a, const PosedModel& b, const QueryContext& ctx, PairFn overlapFn) {
+  const auto& ma = static_cast<const TriangleMesh&>(a.model);
+  const auto& mb = static_cast<const TriangleMesh&>(b.model);
+  const mesh::MeshBvh& ha = ma.bvh();
+  const mesh::MeshBvh& hb = mb.bvh();
+  const Eigen::Isometry3d X_AB = a.X_WM.inverse(Eigen::Isometry) * b.X_WM;
+  const Eigen::Matrix3d R = X_AB.linear();
+  const double scale = coordinateScale(ma, mb, X_AB);
+  const auto& va = ma.vertices();
+  const auto& vb = mb.vertices();
+  const auto& ta = ma.triangles();
+  const auto& tb = mb.triangles();
+  const std::uint32_t* orderA = ha.tree.order.data();
+  const std::uint32_t* orderB = hb.tree.order.data();
+
+  Best best;
+  auto leaf = [&](std::uint32_t i, std::uint32_t j, Best& bst) {
+    const mesh::BvhNode& x = ha.tree.nodes[i];
+    const mesh::BvhNode& y = hb.tree.nodes[j];
+    Eigen::Vector3d triB[4][3], nB[4], loB[4], hiB[4];
+    for (std::uint32_t l = 0; l < y.count; ++l) {
+      const std::uint32_t tj = orderB[y.first + l];
+      for (int k = 0; k < 3; ++k) triB[l][k] = X_AB * vb[tb[tj][k]];
+      nB[l] = R * mb.faceNormal(static_cast<int>(tj));
+      loB[l] = triB[l][0].cwiseMin(triB[l][1]).cwiseMin(triB[l][2]);
+      hiB[l] = triB[l][0].cwiseMax(triB[l][1]).cwiseMax(triB[l][2]);
+    }
+    for (std::uint32_t m = 0; m < x.count; ++m) {
+      const std::uint32_t ti = orderA[x.first + m];
+      const Eigen::Vector3d triA[3] = {va[ta[ti][0]], va[ta[ti][1]], va[ta[ti][2]]};
+      const Eigen::Vector3d& nA = ma.faceNormal(static_cast<int>(ti));
+      const Eigen::Vector3d loA = triA[0].cwiseMin(triA[1]).cwiseMin(triA[2]);
+      const Eigen::Vector3d hiA = triA[0].cwiseMax(triA[1]).cwiseMax(triA[2]);
+      for (std::uint32_t l = 0; l < y.count; ++l) {
+        // The boxes of the two triangles: a proved lower bound (exact coordinates, no rounding below them).
+        const Eigen::Vector3d gap = (loB[l] - hiA).cwiseMax(loA - hiB[l]).cwiseMax(0.0);
+        if (gap.squaredNorm() >= bst.distance * bst.distance) continue;
+        const mesh::TriangleTriangleClosest c = mesh::closestTriangleTriangle(triA, nA, triB[l], nB[l], bst.distance);
+        if (c.distance < bst.distance) {
+          bst.distance = c.distance;
+          bst.pA = c.pointA;
+          bst.pB = c.pointB;
+          bst.triA = static_cast<int>(ti);
+          bst.intersecting = c.intersecting;
+          if (c.distance <= 0) return;
+        }
+      }
+    }
+  };
+  const Traversal tr = traverse({&ha.tree, &ha.spheres}, {&hb.tree, &hb.spheres}, X_AB, pruneOf(ctx, scale),
+                                budgetOf(ctx), best, leaf);
+
+  const bool solidA = ma.isSolid(), solidB = mb.isSolid();
+  if (solidA || solidB) {
+    if (best.distance <= 0) return overlap(a, b, ctx, true, overlapFn);
+    // Apart surfaces: overlap only by containment (of a whole component when the other is open).
+    if (solidA && (solidB ? ma.inside(X_AB * vb[0]) : solidContainsAny(ma, vb, X_AB))) return overlap(a, b, ctx, false, overlapFn);
+    const Eigen::Isometry3d X_BA = X_AB.inverse(Eigen::Isometry);
+    if (solidB && (solidA ? mb.inside(X_BA * va[0]) : solidContainsAny(mb, va, X_BA))) return overlap(a, b, ctx, false, overlapFn);
+  }
+  const Eigen::Vector3d zeroNormal = best.triA >= 0 ? ma.faceNormal(best.triA) : Eigen::Vector3d::UnitZ();
+  return finish(a, best, tr, scale, ctx, zeroNormal, "mesh-mesh-bvh");
+}
+
+DistanceResult meshCloud(const PosedModel& a, const PosedModel& b, const QueryContext& ctx) {
+  const auto& ma = static_cast<const TriangleMesh&>(a.model);
+  const auto& cb = static_cast<const PointCloud&>(b.model);
+  const mesh::MeshBvh& ha = ma.bvh();
+  const cloud::PointTree& hb = cb.tree();
+  const Eigen::Isometry3d X_AB = a.X_WM.inverse(Eigen::Isometry) * b.X_WM;
+  const double scale = coordinateScale(ma, cb, X_AB);
+  const auto& va = ma.vertices();
+  const auto& ta = ma.triangles();
+  const auto& pb = cb.points();
+  const std::uint32_t* orderA = ha.tree.order.data();
+  const std::uint32_t* orderB = hb.tree.order.data();
+
+  Best best;
+  auto leaf = [&](std::uint32_t i, std::uint32_t j, Best& bst) {
+    const mesh::BvhNode& x = ha.tree.nodes[i];
+    const mesh::BvhNode& y = hb.tree.nodes[j];
+    Eigen::Vector3d q[4];
+    for (std::uint32_t l = 0; l < y.count; ++l) q[l] = X_AB * pb[orderB[y.first + l]];
+    for (std::uint32_t m = 0; m < x.count; ++m) {
+      const std::uint32_t ti = orderA[x.first + m];
+      const auto& tri = ta[ti];
+      for (std::uint32_t l = 0; l < y.count; ++l) {
+        const mesh::TriangleClosest c =
+            mesh::closestOnTriangle(q[l], va[tri[0]], va[tri[1]], va[tri[2]], ma.faceNormal(static_cast<int>(ti)));
+        const double d = std::sqrt(c.squaredDistance);
+        if (d < bst.distance) {
+          bst.distance = d;
+          bst.pA = c.point;
+          bst.pB = q[l];
+          bst.triA = static_cast<int>(ti);
+        }
+      }
+    }
+  };
+  const Traversal tr = traverse({&ha.tree, &ha.spheres}, {&hb.tree, &hb.spheres}, X_AB, pruneOf(ctx, scale),
+                                budgetOf(ctx), best, leaf);
+  if (ma.isSolid() && (best.distance <= 0 || solidContainsAny(ma, pb, X_AB))) return overlap(a, b, ctx, false);
+  const Eigen::Vector3d zeroNormal = best.triA >= 0 ? ma.faceNormal(best.triA) : Eigen::Vector3d::UnitZ();
+  return finish(a, best, tr, scale, ctx, zeroNormal, "mesh-cloud-bvh");
+}
+
+DistanceResult cloudCloud(const PosedModel& a, const PosedModel& b, const QueryContext& ctx) {
+  const auto& ca = static_cast<const PointCloud&>(a.model);
+  const auto& cb = static_cast<const PointCloud&>(b.model);
+  const cloud::PointTree& ha = ca.tree();
+  const cloud::PointTree& hb = cb.tree();
+  const Eigen::Isometry3d X_AB = a.X_WM.inverse(Eigen::Isometry) * b.X_WM;
+  const double scale = coordinateScale(ca, cb, X_AB);
+  const auto& pa = ca.points();
+  const auto& pb = cb.points();
+  const std::uint32_t* orderA = ha.tree.order.data();
+  const std::uint32_t* orderB = hb.tree.order.data();
+
+  Best best;
+  auto leaf = [&](std::uint32_t i, std::uint32_t j, Best& bst) {
+    const mesh::BvhNode& x = ha.tree.nodes[i];
+    const mesh::BvhNode& y = hb.tree.nodes[j];
+    Eigen::Vector3d q[4];
+    for (std::uint32_t l = 0; l < y.count; ++l) q[l] = X_AB * pb[orderB[y.first + l]];
+    for (std::uint32_t m = 0; m < x.count; ++m) {
+      const std::uint32_t pi = orderA[x.first + m];
+      for (std::uint32_t l = 0; l < y.count; ++l) {
+        const double d = (q[l] - pa[pi]).norm();
+        if (d < bst.distance) {
+          bst.distance = d;
+          bst.pA = pa[pi];
+          bst.pB = q[l];
+          bst.triA = static_cast<int>(pi);
+        }
+      }
+    }
+  };
+  const Traversal tr = traverse({&ha.tree, &ha.spheres}, {&hb.tree, &hb.spheres}, X_AB, pruneOf(ctx, scale),
+                                budgetOf(ctx), best, leaf);
+  return finish(a, best, tr, scale, ctx, Eigen::Vector3d::UnitZ(), "cloud-cloud-bvh");
+}
+
+}  // namespace unidist::detail

@@ -1,0 +1,349 @@
+// Mesh–mesh, mesh–cloud and cloud–cloud global distance (core/src/pairs/mesh_mesh.cpp) against exact brute
+// force over all triangle pairs (triangle–triangle distance written again here in long double: vertex–triangle
+// from the fixtures, segment–segment by normal equations with endpoint fallbacks, and an edge–plane crossing
+// test with barycentric coordinates), at fixed random poses.
+#include "core/mesh_fixtures.h"
+#include "unidist/distance.h"
+#include "unidist/mesh.h"
+#include "unidist/point_cloud.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <memory>
+#include <random>
+#include <string>
+#include <vector>
+
+namespace {
+
+using meshfix::LD;
+using meshfix::Soup;
+using meshfix::Tri;
+using meshfix::Vec;
+using meshfix::VecL;
+using unidist::DistanceResult;
+using unidist::PointCloud;
+using unidist::TriangleMesh;
+
+LD segSegSq(const VecL& p1, const VecL& q1, const VecL& p2, const VecL& q2) {
+  LD best = std::min({meshfix::segmentSq(p1, p2, q2), meshfix::segmentSq(q1, p2, q2), meshfix::segmentSq(p2, p1, q1),
+                      meshfix::segmentSq(q2, p1, q1)});
+  const VecL d1 = q1 - p1, d2 = q2 - p2, r = p1 - p2;
+  const LD a = d1.dot(d1), e = d2.dot(d2), b = d1.dot(d2), c = d1.dot(r), f = d2.dot(r);
+  const LD det = a * e - b * b;
+  if (det > 1e-15L * a * e) {
+    const LD s = (b * f - c * e) / det, t = (a * f - b * c) / det;
+    if (s >= 0 && s <= 1 && t >= 0 && t <= 1) best = std::min(best, (r + s * d1 - t * d2).squaredNorm());
+  }
+  return best;
+}
+
+/// Whether edge [p, q] passes through triangle (a, b, c) (crossing its plane inside it).
+bool edgeCrosses(const VecL& p, const VecL& q, const VecL& a, const VecL& b, const VecL& c) {
+  const VecL n = (b - a).cross(c - a);
+  const LD dp = n.dot(p - a), dq = n.dot(q - a);
+  if (dp * dq > 0 || (dp == 0 && dq == 0)) return false;
+  const VecL x = p + (dp / (dp - dq)) * (q - p);
+  const VecL e0 = b - a, e1 = c - a, w = x - a;
+  const LD A = e0.dot(e0), B = e0.dot(e1), C = e1.dot(e1), D = e0.dot(w), E = e1.dot(w);
+  const LD det = A * C - B * B;
+  const LD s = (C * D - B * E) / det, t = (A * E - B * D) / det;
+  return s >= 0 && t >= 0 && s + t <= 1;
+}
+
+LD triTriSq(const std::array<VecL, 3>& A, const std::array<VecL, 3>& B) {
+  for (int i = 0; i < 3; ++i)
+    if (edgeCrosses(A[i], A[(i + 1) % 3], B[0], B[1], B[2]) || edgeCrosses(B[i], B[(i + 1) % 3], A[0], A[1], A[2]))
+      return 0;
+  LD best = std::numeric_limits<LD>::infinity();
+  auto pt = [](const VecL& v) { return Vec(static_cast<double>(v.x()), static_cast<double>(v.y()), static_cast<double>(v.z())); };
+  for (int i = 0; i < 3; ++i) {
+    best = std::min(best, meshfix::triangleSq(pt(A[i]), pt(B[0]), pt(B[1]), pt(B[2])));
+    best = std::min(best, meshfix::triangleSq(pt(B[i]), pt(A[0]), pt(A[1]), pt(A[2])));
+    for (int j = 0; j < 3; ++j) best = std::min(best, segSegSq(A[i], A[(i + 1) % 3], B[j], B[(j + 1) % 3]));
+  }
+  return best;
+}
+
+/// A shape for the tests: a mesh soup or a cloud (no triangles).
+struct Shape {
+  Soup soup;
+  bool cloud = false;
+};
+
+std::vector<VecL> posedPoints(const Shape& s, const Eigen::Isometry3d& X) {
+  std::vector<VecL> out;
+  for (const Vec& v : s.soup.vertices) out.push_back(X.cast<LD>() * meshfix::toL(v));
+  return out;
+}
+
+/// Exact unsigned distance between the two posed shapes by brute force.
+double bruteDistance(const Shape& a, const Eigen::Isometry3d& Xa, const Shape& b, const Eigen::Isometry3d& Xb) {
+  const std::vector<VecL> pa = posedPoints(a, Xa), pb = posedPoints(b, Xb);
+  LD best = std::numeric_limits<LD>::infinity();
+  auto pt = [](const VecL& v) { return Vec(static_cast<double>(v.x()), static_cast<double>(v.y()), static_cast<double>(v.z())); };
+  if (a.cloud && b.cloud) {
+    for (const VecL& p : pa)
+      for (const VecL& q : pb) best = std::min(best, (p - q).squaredNorm());
+  } else if (a.cloud || b.cloud) {
+    const Shape& m = a.cloud ? b : a;
+    const std::vector<VecL>& pm = a.cloud ? pb : pa;
+    const std::vector<VecL>& pc = a.cloud ? pa : pb;
+    for (const Tri& t : m.soup.triangles)
+      for (const VecL& q : pc) best = std::min(best, meshfix::triangleSq(pt(q), pt(pm[t[0]]), pt(pm[t[1]]), pt(pm[t[2]])));
+  } else {
+    // Every pair, except those a ball around each triangle proves farther than the best so far (exact skip).
+    auto balls = [](const Soup& soup, const std::vector<VecL>& p) {
+      std::vector<std::pair<VecL, LD>> out;
+      for (const Tri& t : soup.triangles) {
+        const VecL c = (p[t[0]] + p[t[1]] + p[t[2]]) / 3;
+        out.push_back({c, 1.000001L * std::max({(p[t[0]] - c).norm(), (p[t[1]] - c).norm(), (p[t[2]] - c).norm()})});
+      }
+      return out;
+    };
+    const auto ba = balls(a.soup, pa), bb = balls(b.soup, pb);
+    for (std::size_t i = 0; i < a.soup.triangles.size(); ++i)
+      for (std::size_t j = 0; j < b.soup.triangles.size(); ++j) {
+        const LD gap = (ba[i].first - bb[j].first).norm() - ba[i].second - bb[j].second;
+        if (gap > 0 && gap * gap > best * 1.000001L) continue;
+        const Tri& s = a.soup.triangles[i];
+        const Tri& t = b.soup.triangles[j];
+        best = std::min(best, triTriSq({pa[s[0]], pa[s[1]], pa[s[2]]}, {pb[t[0]], pb[t[1]], pb[t[2]]}));
+      }
+  }
+  return static_cast<double>(std::sqrt(best));
+}
+
+std::unique_ptr<unidist::Model> build(const Shape& s) {
+  if (s.cloud) return std::make_unique<PointCloud>(s.soup.vertices);
+  return std::make_unique<TriangleMesh>(s.soup.vertices, s.soup.triangles);
+}
+
+Shape cloudOf(const Soup& s, int count, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  Shape c;
+  c.cloud = true;
+  c.soup.vertices = meshfix::queryPoints(s, count, 0.02, 0.0, rng);
+  return c;
+}
+
+Eigen::Isometry3d randomPose(std::mt19937_64& rng, double reach) {
+  std::normal_distribution<double> n01;
+  std::uniform_real_distribution<double> u(-reach, reach);
+  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+  X.linear() = Eigen::Quaterniond(n01(rng), n01(rng), n01(rng), n01(rng)).normalized().toRotationMatrix();
+  X.translation() = Vec(u(rng), u(rng), u(rng));
+  return X;
+}
+
+double surfaceDistance(const unidist::Model& m, const Eigen::Isometry3d& X, const Vec& p_W) {
+  return std::abs(m.closestPoint(X.inverse() * p_W).signedDistance);
+}
+
+/// Checks one separated query against the truth (both argument orders).
+void checkSeparated(const Shape& a, const Eigen::Isometry3d& Xa, const Shape& b, const Eigen::Isometry3d& Xb,
+                    double truth, const std::string& what) {
+  const auto ma = build(a), mb = build(b);
+  const DistanceResult r = unidist::distance(*ma, Xa, *mb, Xb);
+  const DistanceResult s = unidist::distance(*mb, Xb, *ma, Xa);
+  const double tol = unidist::defaultTolerance(*ma, Xa, *mb, Xb);
+  const double size = std::max(ma->localBounds().diagonal(), mb->localBounds().diagonal());
+  const double slack = tol + 1e-13 * size;
+  SCOPED_TRACE(what + " truth=" + std::to_string(truth) + " method=" + r.method);
+  EXPECT_NEAR(r.distance, truth, slack);
+  EXPECT_NEAR(s.distance, truth, slack);
+  EXPECT_NEAR(r.distance, s.distance, slack);
+  EXPECT_LE(r.lowerBound, truth + 1e-13 * size);
+  EXPECT_GE(r.upperBound, truth - 1e-13 * size);
+  EXPECT_LE(s.lowerBound, truth + 1e-13 * size);
+  EXPECT_GE(s.upperBound, truth - 1e-13 * size);
+  EXPECT_EQ(r.status, unidist::Status::Certified);
+  EXPECT_EQ(s.status, unidist::Status::Certified);
+  EXPECT_NEAR(r.normal.norm(), 1.0, 1e-12);
+  EXPECT_LE((r.pointB - r.pointA - r.distance * r.normal).norm(), slack);
+  EXPECT_LE((s.pointB - s.pointA - s.distance * s.normal).norm(), slack);
+  EXPECT_LE(surfaceDistance(*ma, Xa, r.pointA), slack);
+  EXPECT_LE(surfaceDistance(*mb, Xb, r.pointB), slack);
+}
+
+struct Family {
+  std::string name;
+  Shape shape;
+};
+
+std::vector<Family> families() {
+  std::vector<Family> f;
+  f.push_back({"sphere320", {meshfix::icosphere(0.6, 2), false}});
+  f.push_back({"torus1k", {meshfix::torus(0.8, 0.25, 32, 16), false}});
+  f.push_back({"box", {meshfix::gridBox(Vec(0.5, 0.3, 0.4), 4), false}});
+  f.push_back({"sheet", {meshfix::wavySheet(12), false}});
+  f.push_back({"cloud", cloudOf(meshfix::torus(0.7, 0.2, 24, 12), 300, 7)});
+  return f;
+}
+
+TEST(MeshPairs, SeparatedRandomPosesMatchBruteForce) {
+  const std::vector<Family> fam = families();
+  std::mt19937_64 rng(20261122);
+  int checked = 0;
+  for (std::size_t i = 0; i < fam.size(); ++i)
+    for (std::size_t j = i; j < fam.size(); ++j)
+      for (int k = 0; k < 6; ++k) {
+        const Eigen::Isometry3d Xa = randomPose(rng, 0.5), Xb = randomPose(rng, 1.6);
+        const double truth = bruteDistance(fam[i].shape, Xa, fam[j].shape, Xb);
+        if (truth < 1e-3) continue;  // crossing or touching: other tests
+        const auto ma = build(fam[i].shape), mb = build(fam[j].shape);
+        // Containment is an overlap, not a separation (a small shape in the torus is not contained).
+        if (ma->isSolid() && ma->inside(Xa.inverse() * (Xb * fam[j].shape.soup.vertices[0]))) continue;
+        if (mb->isSolid() && mb->inside(Xb.inverse() * (Xa * fam[i].shape.soup.vertices[0]))) continue;
+        // A cloud reaching into a solid has a negative (signed) answer: the overlap tests cover it.
+        auto cloudInside = [](const Shape& c, const Eigen::Isometry3d& Xc, const unidist::Model& solid,
+                              const Eigen::Isometry3d& Xs) {
+          if (!c.cloud || !solid.isSolid()) return false;
+          for (const Vec& p : c.soup.vertices)
+            if (solid.inside(Xs.inverse() * (Xc * p))) return true;
+          return false;
+        };
+        if (cloudInside(fam[i].shape, Xa, *mb, Xb) || cloudInside(fam[j].shape, Xb, *ma, Xa)) continue;
+        checkSeparated(fam[i].shape, Xa, fam[j].shape, Xb, truth, fam[i].name + "/" + fam[j].name + " #" + std::to_string(k));
+        ++checked;
+      }
+  EXPECT_GT(checked, 50);
+}
+
+TEST(MeshPairs, ScalesSmallAndLarge) {
+  const std::vector<Family> fam = families();
+  std::mt19937_64 rng(99);
+  for (double scale : {1e-4, 1e4}) {
+    for (std::size_t i = 0; i < fam.size(); ++i) {
+      const std::size_t j = (i + 1) % fam.size();
+      Shape a = fam[i].shape, b = fam[j].shape;
+      a.soup = meshfix::scaled(a.soup, scale);
+      b.soup = meshfix::scaled(b.soup, scale, Vec(1e3 * scale, 0, 0));  // far from the origin too
+      Eigen::Isometry3d Xa = randomPose(rng, 0.3), Xb = randomPose(rng, 0.3);
+      Xa.translation() *= scale;
+      Xb.translation() = Xb.translation() * scale - Xb.linear() * Vec(1e3 * scale, 0, 0) + Vec(2.2 * scale, 0, 0);
+      const double truth = bruteDistance(a, Xa, b, Xb);
+      if (truth < 1e-3 * scale) continue;
+      checkSeparated(a, Xa, b, Xb, truth, fam[i].name + "/" + fam[j].name + " scale " + std::to_string(scale));
+    }
+  }
+}
+
+TEST(MeshPairs, NearParallelFaces) {
+  const Shape box{meshfix::gridBox(Vec(0.5, 0.5, 0.5), 3), false};
+  const Shape sheet{meshfix::wavySheet(6), false};
+  for (double gap : {1e-3, 1e-7}) {
+    for (const Vec& axis : {Vec(0, 1, 0), Vec(0, 0, 1), Vec(0, 1, 1).normalized()}) {
+      Eigen::Isometry3d Xa = Eigen::Isometry3d::Identity(), Xb = Eigen::Isometry3d::Identity();
+      Xb.linear() = Eigen::AngleAxisd(1e-6, axis).toRotationMatrix();
+      Xb.translation() = Vec(1.0 + gap + 1e-6, 0.1, -0.05);
+      const double truth = bruteDistance(box, Xa, box, Xb);
+      checkSeparated(box, Xa, box, Xb, truth, "box/box gap " + std::to_string(gap));
+      // The same near-parallel approach with the open sheet (not convex, so through the hierarchy).
+      Eigen::Isometry3d Xs = Eigen::Isometry3d::Identity();
+      Xs.linear() = Eigen::AngleAxisd(1e-6, axis).toRotationMatrix();
+      Xs.translation() = Vec(0, 0, 0.5 + 0.2 + gap + 2e-6);
+      const double truthSheet = bruteDistance(box, Xa, sheet, Xs);
+      checkSeparated(box, Xa, sheet, Xs, truthSheet, "box/sheet gap " + std::to_string(gap));
+    }
+  }
+}
+
+TEST(MeshPairs, TouchingIsExactlyZero) {
+  // Two boxes face to face (convex: through GJK), a box and a torus touching at the torus's outer equator
+  // (through the hierarchy, then the overlap routine), two sheets touching at a point.
+  const Shape box{meshfix::gridBox(Vec(0.5, 0.5, 0.5), 2), false};
+  {
+    const auto m = build(box);
+    Eigen::Isometry3d Xb = Eigen::Isometry3d::Identity();
+    Xb.translation() = Vec(1.0, 0.25, 0.125);
+    const DistanceResult r = unidist::distance(*m, Eigen::Isometry3d::Identity(), *m, Xb);
+    EXPECT_NEAR(r.distance, 0.0, 1e-12);
+    EXPECT_LE(r.lowerBound, 0.0);
+    EXPECT_GE(r.upperBound, 0.0);
+  }
+  {
+    const Shape sheet{meshfix::wavySheet(8), false};
+    const auto m = build(sheet);
+    // Lift B so its lowest vertex touches A's highest one exactly: the sheet values at grid points are known.
+    double top = -1e9, bottom = 1e9;
+    Vec topV = Vec::Zero(), bottomV = Vec::Zero();
+    for (const Vec& v : sheet.soup.vertices) {
+      if (v.z() > top) top = v.z(), topV = v;
+      if (v.z() < bottom) bottom = v.z(), bottomV = v;
+    }
+    Eigen::Isometry3d Xb = Eigen::Isometry3d::Identity();
+    Xb.translation() = topV - bottomV;
+    const DistanceResult r = unidist::distance(*m, Eigen::Isometry3d::Identity(), *m, Xb);
+    EXPECT_EQ(r.distance, 0.0);
+    EXPECT_EQ(r.lowerBound, 0.0);
+    EXPECT_EQ(r.upperBound, 0.0);
+    EXPECT_EQ(r.status, unidist::Status::Certified);
+    EXPECT_NEAR(r.normal.norm(), 1.0, 1e-12);
+  }
+}
+
+TEST(MeshPairs, CrossingOpenSurfacesGiveZeroOnBoth) {
+  const Shape sheet{meshfix::wavySheet(10), false};
+  const auto m = build(sheet);
+  std::mt19937_64 rng(5);
+  for (int k = 0; k < 5; ++k) {
+    Eigen::Isometry3d Xb = randomPose(rng, 0.2);
+    const DistanceResult r = unidist::distance(*m, Eigen::Isometry3d::Identity(), *m, Xb);
+    ASSERT_EQ(bruteDistance(sheet, Eigen::Isometry3d::Identity(), sheet, Xb), 0.0);
+    EXPECT_EQ(r.distance, 0.0);
+    EXPECT_EQ(r.status, unidist::Status::Certified);
+    EXPECT_LE(surfaceDistance(*m, Eigen::Isometry3d::Identity(), r.pointA), 1e-12);
+    EXPECT_LE(surfaceDistance(*m, Xb, r.pointB), 1e-12);
+  }
+}
+
+TEST(MeshPairs, CloudPointInsideSolidIsNegative) {
+  const Shape sphere{meshfix::icosphere(1.0, 2), false};
+  Shape cloud;
+  cloud.cloud = true;
+  cloud.soup.vertices = {Vec(0.5, 0, 0), Vec(3, 0, 0), Vec(0, 4, 0)};
+  const auto ms = build(sphere), mc = build(cloud);
+  const DistanceResult r = unidist::distance(*ms, Eigen::Isometry3d::Identity(), *mc, Eigen::Isometry3d::Identity());
+  EXPECT_LT(r.distance, -0.4);
+  EXPECT_GT(r.distance, -0.5);
+  EXPECT_LE(r.lowerBound, r.distance);
+  EXPECT_GE(r.upperBound, r.distance);
+  // The whole cloud outside: the plain minimum.
+  cloud.soup.vertices = {Vec(1.5, 0, 0), Vec(3, 0, 0)};
+  const auto mc2 = build(cloud);
+  const DistanceResult s = unidist::distance(*mc2, Eigen::Isometry3d::Identity(), *ms, Eigen::Isometry3d::Identity());
+  EXPECT_NEAR(s.distance, bruteDistance(cloud, Eigen::Isometry3d::Identity(), sphere, Eigen::Isometry3d::Identity()), 1e-9);
+  EXPECT_EQ(s.status, unidist::Status::Certified);
+}
+
+TEST(MeshPairs, SphereInsideHollowIsAnOverlap) {
+  // A small ball wholly inside a big one: surfaces apart, but the solids overlap (containment).
+  const Shape big{meshfix::torus(1.0, 0.5, 24, 12), false};
+  const Shape small{meshfix::icosphere(0.1, 1), false};
+  const auto mb = build(big), ms = build(small);
+  Eigen::Isometry3d Xs = Eigen::Isometry3d::Identity();
+  Xs.translation() = Vec(1.0, 0, 0);
+  const DistanceResult r = unidist::distance(*mb, Eigen::Isometry3d::Identity(), *ms, Xs);
+  EXPECT_LT(r.distance, 0.0);
+  EXPECT_LE(r.lowerBound, r.distance);
+}
+
+TEST(MeshPairs, BudgetExhaustedIsBoundedAndHonest) {
+  const Shape t{meshfix::torus(0.8, 0.25, 32, 16), false};
+  const auto m = build(t);
+  Eigen::Isometry3d Xb = Eigen::Isometry3d::Identity();
+  Xb.linear() = Eigen::AngleAxisd(M_PI / 2, Vec::UnitX()).toRotationMatrix();
+  Xb.translation() = Vec(0.8, 0, 0);  // linked rings, 0.3 apart everywhere along the link
+  unidist::DistanceOptions o;
+  o.maxIterations = 1;
+  const DistanceResult r = unidist::distance(*m, Eigen::Isometry3d::Identity(), *m, Xb, o);
+  const double truth = bruteDistance(t, Eigen::Isometry3d::Identity(), t, Xb);
+  EXPECT_LE(r.lowerBound, truth);
+  EXPECT_GE(r.upperBound, truth);
+  EXPECT_NEAR(truth, 0.3, 0.05);
+  EXPECT_EQ(r.status, unidist::Status::Bounded);
+}
+
+}  // namespace
