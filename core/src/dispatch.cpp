@@ -86,7 +86,7 @@ struct Cell {
   const char* name = nullptr;
 };
 
-constexpr int kTypes = static_cast<int>(ModelType::Inflated) + 1;
+constexpr int kTypes = static_cast<int>(ModelType::Nurbs) + 1;  // the last ModelType
 
 class DispatchTable {
  public:

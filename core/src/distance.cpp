@@ -73,26 +73,30 @@ double defaultTolerance(const Model& a, const Eigen::Isometry3d& X_WA, const Mod
   return 1e-9 * (diagonal > 0 ? diagonal : 1.0);
 }
 
-DistanceResult distance(const Model& a, const Eigen::Isometry3d& X_WA, const Model& b, const Eigen::Isometry3d& X_WB,
-                        const DistanceOptions& options) {
+namespace {
+
+/// Checks, settles the tolerance, runs `routine` on the posed pair and applies inflation.
+DistanceResult answer(detail::PairFn routine, const Model& a, const Eigen::Isometry3d& X_WA, const Model& b,
+                      const Eigen::Isometry3d& X_WB, const DistanceOptions& options) {
   requireValidPose(X_WA, "A");
   requireValidPose(X_WB, "B");
   const detail::QueryContext ctx = settle(a, X_WA, b, X_WB, options);
   const detail::PosedModel pa{a, X_WA}, pb{b, X_WB};
-  DistanceResult r = detail::dispatchPair(pa, pb, ctx);
+  DistanceResult r = routine(pa, pb, ctx);
   inflate(r, pa, pb, options.inflateA, options.inflateB, ctx.tolerance);
   return r;
 }
 
+}  // namespace
+
+DistanceResult distance(const Model& a, const Eigen::Isometry3d& X_WA, const Model& b, const Eigen::Isometry3d& X_WB,
+                        const DistanceOptions& options) {
+  return answer(&detail::dispatchPair, a, X_WA, b, X_WB, options);
+}
+
 DistanceResult genericDistance(const Model& a, const Eigen::Isometry3d& X_WA, const Model& b,
                                const Eigen::Isometry3d& X_WB, const DistanceOptions& options) {
-  requireValidPose(X_WA, "A");
-  requireValidPose(X_WB, "B");
-  const detail::QueryContext ctx = settle(a, X_WA, b, X_WB, options);
-  const detail::PosedModel pa{a, X_WA}, pb{b, X_WB};
-  DistanceResult r = detail::genericPair(pa, pb, ctx);
-  inflate(r, pa, pb, options.inflateA, options.inflateB, ctx.tolerance);
-  return r;
+  return answer(&detail::genericPair, a, X_WA, b, X_WB, options);
 }
 
 }  // namespace unidist

@@ -19,7 +19,6 @@ const char* toString(ModelType t) {
     case ModelType::Mesh: return "mesh";
     case ModelType::PointCloud: return "pointcloud";
     case ModelType::Nurbs: return "nurbs";
-    case ModelType::Inflated: return "inflated";
   }
   return "unknown";
 }

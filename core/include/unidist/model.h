@@ -12,7 +12,7 @@
 
 namespace unidist {
 
-enum class ModelType { Sphere, Box, Capsule, Cylinder, Cone, Torus, Plane, Mesh, PointCloud, Nurbs, Inflated };
+enum class ModelType { Sphere, Box, Capsule, Cylinder, Cone, Torus, Plane, Mesh, PointCloud, Nurbs };
 
 const char* toString(ModelType t);
 

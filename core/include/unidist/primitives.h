@@ -1,6 +1,6 @@
 // Analytic primitives: exact closest point, outward normal and signed distance for every finite query
-// point, in the primitive's own frame. Sizes must be finite and > 0 (h >= 0 for a capsule is not allowed:
-// the contract asks for h > 0); otherwise the constructor throws InputError naming the field and value.
+// point, in the primitive's own frame. Every size must be finite and > 0 (also a capsule's half-length, as the
+// contract asks); otherwise the constructor throws InputError naming the field and value.
 //
 // Defined answers where the closest point is not unique (never NaN):
 //  * sphere centre: the point (0, 0, r), normal +z;
