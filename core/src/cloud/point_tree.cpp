@@ -13,7 +13,7 @@ PointTree buildPointTree(const std::vector<Eigen::Vector3d>& points) {
   std::vector<mesh::BvhItem> items(points.size());
   for (std::size_t i = 0; i < points.size(); ++i) items[i] = {points[i], points[i]};
   PointTree t;
-  t.tree = mesh::buildBvh(items, 4);
+  t.tree = mesh::buildBvh(items);
   t.ranges = mesh::nodeRanges(t.tree);
   t.spheres.resize(t.tree.nodes.size());
   for (std::size_t i = 0; i < t.tree.nodes.size(); ++i) {

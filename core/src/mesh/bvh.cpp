@@ -158,7 +158,7 @@ Bvh buildBvh(const std::vector<BvhItem>& items, int maxLeafSize) {
   bvh.nodes.push_back(BvhNode{});
   std::vector<Task> tasks;
   tasks.push_back({0, 0, n, 0, centroidBounds(w, 0, n)});
-  const auto leafMax = static_cast<std::uint32_t>(std::max(1, maxLeafSize));
+  const auto leafMax = static_cast<std::uint32_t>(std::clamp(maxLeafSize, 1, kMaxLeafSize));
   while (!tasks.empty()) {
     const Task t = tasks.back();
     tasks.pop_back();
@@ -261,7 +261,7 @@ MeshBvh buildMeshBvh(const std::vector<Eigen::Vector3d>& vertices,
     items[t].hi = a.cwiseMax(b).cwiseMax(c);
   }
   MeshBvh m;
-  m.tree = buildBvh(items, 4);
+  m.tree = buildBvh(items);
   m.ranges = nodeRanges(m.tree);
   const std::size_t nodes = m.tree.nodes.size();
   m.spheres.resize(nodes);

@@ -76,7 +76,11 @@ struct Bvh {
 /// Deepest a tree built by buildBvh can be, so traversal stacks of this size never overflow.
 constexpr int kMaxBvhDepth = 96;
 
-Bvh buildBvh(const std::vector<BvhItem>& items, int maxLeafSize = 4);
+/// Most items a leaf holds; leaf-pair routines size their scratch arrays by it.
+constexpr int kMaxLeafSize = 4;
+
+/// Builds the hierarchy with leaves of at most maxLeafSize (<= kMaxLeafSize) items.
+Bvh buildBvh(const std::vector<BvhItem>& items, int maxLeafSize = kMaxLeafSize);
 
 /// Slot range [begin, end) of every node (computed bottom-up from the leaves).
 std::vector<std::array<std::uint32_t, 2>> nodeRanges(const Bvh& bvh);

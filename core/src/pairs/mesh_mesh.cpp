@@ -227,7 +227,7 @@ DistanceResult meshMesh(const PosedModel& a, const PosedModel& b, const QueryCon
   auto leaf = [&](std::uint32_t i, std::uint32_t j, Best& bst) {
     const mesh::BvhNode& x = ha.tree.nodes[i];
     const mesh::BvhNode& y = hb.tree.nodes[j];
-    Eigen::Vector3d triB[4][3], nB[4], loB[4], hiB[4];
+    Eigen::Vector3d triB[mesh::kMaxLeafSize][3], nB[mesh::kMaxLeafSize], loB[mesh::kMaxLeafSize], hiB[mesh::kMaxLeafSize];
     for (std::uint32_t l = 0; l < y.count; ++l) {
       const std::uint32_t tj = orderB[y.first + l];
       for (int k = 0; k < 3; ++k) triB[l][k] = X_AB * vb[tb[tj][k]];
@@ -289,7 +289,7 @@ DistanceResult meshCloud(const PosedModel& a, const PosedModel& b, const QueryCo
   auto leaf = [&](std::uint32_t i, std::uint32_t j, Best& bst) {
     const mesh::BvhNode& x = ha.tree.nodes[i];
     const mesh::BvhNode& y = hb.tree.nodes[j];
-    Eigen::Vector3d q[4];
+    Eigen::Vector3d q[mesh::kMaxLeafSize];
     for (std::uint32_t l = 0; l < y.count; ++l) q[l] = X_AB * pb[orderB[y.first + l]];
     for (std::uint32_t m = 0; m < x.count; ++m) {
       const std::uint32_t ti = orderA[x.first + m];
@@ -330,7 +330,7 @@ DistanceResult cloudCloud(const PosedModel& a, const PosedModel& b, const QueryC
   auto leaf = [&](std::uint32_t i, std::uint32_t j, Best& bst) {
     const mesh::BvhNode& x = ha.tree.nodes[i];
     const mesh::BvhNode& y = hb.tree.nodes[j];
-    Eigen::Vector3d q[4];
+    Eigen::Vector3d q[mesh::kMaxLeafSize];
     for (std::uint32_t l = 0; l < y.count; ++l) q[l] = X_AB * pb[orderB[y.first + l]];
     for (std::uint32_t m = 0; m < x.count; ++m) {
       const std::uint32_t pi = orderA[x.first + m];
