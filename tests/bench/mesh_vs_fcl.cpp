@@ -1,7 +1,7 @@
 // Mesh–mesh separation distance: unidist (core/src/pairs/mesh_mesh.cpp) against FCL's BVHModel<OBBRSS> and
 // <RSS> on the same meshes and poses, in the same run. Prints one line per case: distances, the largest
 // relative difference to FCL, and median query times (µs). Usage:
-//   unidist_bench_mesh_vs_fcl [models dir (torus_1k.obj, torus_20k.obj)] [fcl data dir (env.obj, rob.obj)] [tori|env|clouds]
+//   unidist_bench_mesh_vs_fcl [models dir (torus_1k.obj, torus_20k.obj)] [fcl data dir (env.obj, rob.obj)] [tori|env|clouds|build]
 #include "unidist/adapters/load.h"
 #include "unidist/distance.h"
 #include "unidist/mesh.h"
@@ -100,6 +100,23 @@ Eigen::Isometry3d placeAtGap(const unidist::TriangleMesh& a, const unidist::Tria
   return Xb;
 }
 
+/// Hierarchy build time, ours (the BVH alone, on a freshly constructed mesh) against FCL's BVHModel build.
+void buildTimes(const std::string& label, const unidist::TriangleMesh& m, int reps) {
+  std::vector<double> ours;
+  for (int i = 0; i < reps; ++i) {
+    const unidist::TriangleMesh fresh(m.vertices(), m.triangles());
+    const auto t0 = Clock::now();
+    (void)fresh.bvh();
+    ours.push_back(std::chrono::duration<double, std::micro>(Clock::now() - t0).count());
+  }
+  std::nth_element(ours.begin(), ours.begin() + reps / 2, ours.end());
+  const double tObb = medianMicros(reps, [&] { (void)fclMesh<fcl::OBBRSSd>(m); });
+  const double tRss = medianMicros(reps, [&] { (void)fclMesh<fcl::RSSd>(m); });
+  std::printf("%-22s build  %zu triangles  median ms: ours %.3f  fcl-obbrss %.3f  fcl-rss %.3f  (fcl/ours %.1fx)\n",
+              label.c_str(), m.triangles().size(), ours[static_cast<std::size_t>(reps / 2)] / 1000, tObb / 1000,
+              tRss / 1000, std::min(tObb, tRss) / ours[static_cast<std::size_t>(reps / 2)]);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -113,7 +130,13 @@ int main(int argc, char** argv) {
   const auto t1 = mesh(models + "/torus_1k.obj"), t20 = mesh(models + "/torus_20k.obj");
   const auto env = mesh(fclData + "/env.obj"), rob = mesh(fclData + "/rob.obj");
 
-  const std::string only = argc > 3 ? argv[3] : "";  // "tori", "env" or "clouds": one group only
+  const std::string only = argc > 3 ? argv[3] : "";  // "tori", "env", "clouds" or "build": one group only
+  if (only.empty() || only == "build") {
+    buildTimes("torus_1k", *t1, 21);
+    buildTimes("torus_20k", *t20, 11);
+    buildTimes("env", *env, 21);
+    if (only == "build") return 0;
+  }
   if (only != "env" && only != "clouds") {
     std::vector<Case> cases;
     Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
