@@ -3,6 +3,7 @@
 // ("<path>:<line>: ...") or byte offset ("<path>: byte <n>: ...") of the problem (docs/query-contract.md,
 // "Model files" and "Bad input"). Fixture files are written by the tests into a scratch directory; the shared
 // acceptance models and FCL's env/rob meshes are loaded when ../shared is present.
+#include "error_of.h"
 #include "unidist/adapters/load.h"
 #include "unidist/mesh.h"
 #include "unidist/point_cloud.h"
@@ -29,20 +30,7 @@ namespace fs = std::filesystem;
 
 // ------------------------------------------------------------------------------------------------ helpers
 
-/// Runs f, expects InputError, and returns its message ("" and a failure otherwise).
-template <class F>
-std::string errorOf(F&& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  } catch (const std::exception& e) {
-    ADD_FAILURE() << "threw a non-InputError: " << e.what();
-    return "";
-  }
-  ADD_FAILURE() << "did not throw";
-  return "";
-}
+using unidist::testing::errorOf;
 
 /// Little- or big-endian binary data, built value by value (the test machine is little endian).
 struct Bytes {

@@ -1,6 +1,7 @@
 // Adapters: numbers, primitive specs, poses and model loading, every rule of docs/query-contract.md
 // ("Primitive specs", "Pose", "Model files") with good and bad input. A bad input must throw InputError whose
 // message names the problem (the command line prints it as its one error line).
+#include "error_of.h"
 #include "unidist/adapters/load.h"
 #include "unidist/adapters/spec.h"
 #include "unidist/primitives.h"
@@ -18,20 +19,7 @@
 namespace unidist {
 namespace {
 
-/// Runs f, expects InputError, and returns its message ("" and a failure otherwise).
-template <class F>
-std::string errorOf(F&& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  } catch (const std::exception& e) {
-    ADD_FAILURE() << "threw a non-InputError: " << e.what();
-    return "";
-  }
-  ADD_FAILURE() << "did not throw";
-  return "";
-}
+using unidist::testing::errorOf;
 
 #define EXPECT_INPUT_ERROR(expr, fragment)                                      \
   do {                                                                          \

@@ -41,10 +41,6 @@ DistanceResult genericPair(const PosedModel& a, const PosedModel& b, const Query
   // 2. Branch and bound over each surface against the other's field. A model without an inside has no
   //    field sign, so for it the search over the other surface is what the contract defines.
   const bool solidA = a.model.isSolid(), solidB = b.model.isSolid();
-  auto fieldValue = [](const PosedModel& field, const Eigen::Vector3d& p) {
-    const double sd = field.closestWorld(p).signedDistance;
-    return field.model.isSolid() ? sd : std::abs(sd);
-  };
   std::vector<DeepestPoint> searches;
   if (solidB || !solidA)
     searches.push_back({minimizeFieldOverSurface(a, b, fieldValue(b, best.onA), best.onA, 0.5 * tol, kSurfaceBudget), true});

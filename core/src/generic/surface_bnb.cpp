@@ -15,13 +15,14 @@ struct OpenCell {
 
 }  // namespace
 
+double fieldValue(const PosedModel& field, const Eigen::Vector3d& p_W) {
+  const double sd = field.closestWorld(p_W).signedDistance;
+  return field.model.isSolid() ? sd : std::abs(sd);
+}
+
 SurfaceMinimum minimizeFieldOverSurface(const PosedModel& surface, const PosedModel& field, double upperHint,
                                         const Eigen::Vector3d& hintPoint, double tolerance, int budget) {
-  const bool signedField = field.model.isSolid();
-  auto fieldAt = [&](const Eigen::Vector3d& p_W) {
-    const double sd = field.closestWorld(p_W).signedDistance;
-    return signedField ? sd : std::abs(sd);
-  };
+  auto fieldAt = [&](const Eigen::Vector3d& p_W) { return fieldValue(field, p_W); };
 
   SurfaceMinimum best;
   best.value = upperHint;

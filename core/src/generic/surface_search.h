@@ -25,6 +25,10 @@ PointPair alternate(const PosedModel& a, const PosedModel& b, const Eigen::Vecto
 /// spheres' centres and the samples of both models' root surface cells.
 std::vector<Eigen::Vector3d> alternationStarts(const PosedModel& a, const PosedModel& b);
 
+/// The distance field of a model at a world point: its signed distance when it is a solid, else the unsigned
+/// distance (a model without an inside has no sign). 1-Lipschitz either way.
+double fieldValue(const PosedModel& field, const Eigen::Vector3d& p_W);
+
 /// Result of minimising the other model's distance field over one model's surface.
 struct SurfaceMinimum {
   double value = std::numeric_limits<double>::infinity();  ///< best field value found (an upper bound on the min)

@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 #include <vector>
 
 namespace unidist::detail {
@@ -206,6 +207,31 @@ DistanceResult overlap(const PosedModel& a, const PosedModel& b, const QueryCont
   return r;
 }
 
+/// Leaf routine when B's items are points: B's leaf points move into A's frame once, then every A item (a
+/// triangle or a point) is measured against each by closestOnA(item, q) → {point of the item, distance}.
+template <class ClosestOnA>
+auto pointLeaf(const mesh::Bvh& treeA, const mesh::Bvh& treeB, const std::vector<Eigen::Vector3d>& pointsB,
+               const Eigen::Isometry3d& X_AB, ClosestOnA closestOnA) {
+  return [&treeA, &treeB, &pointsB, X_AB, closestOnA](std::uint32_t i, std::uint32_t j, Best& bst) {
+    const mesh::BvhNode& x = treeA.nodes[i];
+    const mesh::BvhNode& y = treeB.nodes[j];
+    Eigen::Vector3d q[mesh::kMaxLeafSize];
+    for (std::uint32_t l = 0; l < y.count; ++l) q[l] = X_AB * pointsB[treeB.order[y.first + l]];
+    for (std::uint32_t m = 0; m < x.count; ++m) {
+      const std::uint32_t item = treeA.order[x.first + m];
+      for (std::uint32_t l = 0; l < y.count; ++l) {
+        const auto [onA, d] = closestOnA(item, q[l]);
+        if (d < bst.distance) {
+          bst.distance = d;
+          bst.pA = onA;
+          bst.pB = q[l];
+          bst.triA = static_cast<int>(item);
+        }
+      }
+    }
+  };
+}
+
 }  // namespace
 
 DistanceResult meshMesh(const PosedModel& a, const PosedModel& b, const QueryContext& ctx, PairFn overlapFn) {
@@ -282,31 +308,14 @@ DistanceResult meshCloud(const PosedModel& a, const PosedModel& b, const QueryCo
   const auto& va = ma.vertices();
   const auto& ta = ma.triangles();
   const auto& pb = cb.points();
-  const std::uint32_t* orderA = ha.tree.order.data();
-  const std::uint32_t* orderB = hb.tree.order.data();
 
   Best best;
-  auto leaf = [&](std::uint32_t i, std::uint32_t j, Best& bst) {
-    const mesh::BvhNode& x = ha.tree.nodes[i];
-    const mesh::BvhNode& y = hb.tree.nodes[j];
-    Eigen::Vector3d q[mesh::kMaxLeafSize];
-    for (std::uint32_t l = 0; l < y.count; ++l) q[l] = X_AB * pb[orderB[y.first + l]];
-    for (std::uint32_t m = 0; m < x.count; ++m) {
-      const std::uint32_t ti = orderA[x.first + m];
-      const auto& tri = ta[ti];
-      for (std::uint32_t l = 0; l < y.count; ++l) {
-        const mesh::TriangleClosest c =
-            mesh::closestOnTriangle(q[l], va[tri[0]], va[tri[1]], va[tri[2]], ma.faceNormal(static_cast<int>(ti)));
-        const double d = std::sqrt(c.squaredDistance);
-        if (d < bst.distance) {
-          bst.distance = d;
-          bst.pA = c.point;
-          bst.pB = q[l];
-          bst.triA = static_cast<int>(ti);
-        }
-      }
-    }
-  };
+  const auto leaf = pointLeaf(ha.tree, hb.tree, pb, X_AB, [&](std::uint32_t t, const Eigen::Vector3d& q) {
+    const auto& tri = ta[t];
+    const mesh::TriangleClosest c =
+        mesh::closestOnTriangle(q, va[tri[0]], va[tri[1]], va[tri[2]], ma.faceNormal(static_cast<int>(t)));
+    return std::pair<Eigen::Vector3d, double>(c.point, std::sqrt(c.squaredDistance));
+  });
   const Traversal tr = traverse({&ha.tree, &ha.spheres}, {&hb.tree, &hb.spheres}, X_AB, pruneOf(ctx, scale),
                                 budgetOf(ctx), best, leaf);
   if (ma.isSolid() && (best.distance <= 0 || solidContainsAny(ma, pb, X_AB))) return overlap(a, b, ctx, false);
@@ -322,29 +331,11 @@ DistanceResult cloudCloud(const PosedModel& a, const PosedModel& b, const QueryC
   const Eigen::Isometry3d X_AB = a.X_WM.inverse(Eigen::Isometry) * b.X_WM;
   const double scale = coordinateScale(ca, cb, X_AB);
   const auto& pa = ca.points();
-  const auto& pb = cb.points();
-  const std::uint32_t* orderA = ha.tree.order.data();
-  const std::uint32_t* orderB = hb.tree.order.data();
 
   Best best;
-  auto leaf = [&](std::uint32_t i, std::uint32_t j, Best& bst) {
-    const mesh::BvhNode& x = ha.tree.nodes[i];
-    const mesh::BvhNode& y = hb.tree.nodes[j];
-    Eigen::Vector3d q[mesh::kMaxLeafSize];
-    for (std::uint32_t l = 0; l < y.count; ++l) q[l] = X_AB * pb[orderB[y.first + l]];
-    for (std::uint32_t m = 0; m < x.count; ++m) {
-      const std::uint32_t pi = orderA[x.first + m];
-      for (std::uint32_t l = 0; l < y.count; ++l) {
-        const double d = (q[l] - pa[pi]).norm();
-        if (d < bst.distance) {
-          bst.distance = d;
-          bst.pA = pa[pi];
-          bst.pB = q[l];
-          bst.triA = static_cast<int>(pi);
-        }
-      }
-    }
-  };
+  const auto leaf = pointLeaf(ha.tree, hb.tree, cb.points(), X_AB, [&](std::uint32_t p, const Eigen::Vector3d& q) {
+    return std::pair<Eigen::Vector3d, double>(pa[p], (q - pa[p]).norm());
+  });
   const Traversal tr = traverse({&ha.tree, &ha.spheres}, {&hb.tree, &hb.spheres}, X_AB, pruneOf(ctx, scale),
                                 budgetOf(ctx), best, leaf);
   return finish(a, best, tr, scale, ctx, Eigen::Vector3d::UnitZ(), "cloud-cloud-bvh");
