@@ -48,9 +48,9 @@ const std::vector<ModelFormat>& modelFormats() {
       {".stl", "STL", &formats::readStl},
       {".ply", "PLY", &formats::readPly},
       {".xyz", "XYZ point cloud", &formats::readXyz},
-      {".unurbs.json", "unidist NURBS (.unurbs.json)", nullptr},
-      {".igs", "IGES", nullptr},
-      {".iges", "IGES", nullptr},
+      {".unurbs.json", "unidist NURBS (.unurbs.json)", &formats::readUnurbs},
+      {".igs", "IGES", &formats::readIges},
+      {".iges", "IGES", &formats::readIges},
   };
   return kFormats;
 }

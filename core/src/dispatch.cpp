@@ -4,6 +4,7 @@
 #include "generic/generic_distance.h"
 #include "pairs/analytic.h"
 #include "pairs/box_box.h"
+#include "pairs/mesh_convex.h"
 #include "pairs/mesh_mesh.h"
 #include "pairs/torus_pairs.h"
 #include "unidist/primitives.h"
@@ -122,6 +123,8 @@ const DispatchTable& table() {
 DistanceResult dispatchByShape(const PosedModel& a, const PosedModel& b, const QueryContext& ctx) {
   if (a.model.type() == ModelType::Sphere && b.model.type() == ModelType::Torus) return swapped(torusSolid(b, a, ctx));
   if (a.model.isConvex() && b.model.isConvex()) return convexPair(a, b, ctx);
+  if (a.model.type() == ModelType::Mesh && b.model.isConvex()) return meshConvex(a, b, ctx, &convexPair);
+  if (b.model.type() == ModelType::Mesh && a.model.isConvex()) return swapped(meshConvex(b, a, ctx, &convexPair));
   return genericPair(a, b, ctx);
 }
 

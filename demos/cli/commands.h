@@ -21,8 +21,17 @@ struct InfoArgs {
   bool json = false;
 };
 
-/// Both return the text for stdout; the caller writes it only when the whole command succeeded.
+struct ContactsArgs {
+  std::string a, b;
+  std::string poseA, poseB;
+  std::string margin, maxContacts;
+  bool hasPoseA = false, hasPoseB = false, hasMargin = false, hasMaxContacts = false;
+  bool json = false;
+};
+
+/// Each returns the text for stdout; the caller writes it only when the whole command succeeded.
 std::string runDistance(const DistanceArgs& args);
 std::string runInfo(const InfoArgs& args);
+std::string runContacts(const ContactsArgs& args);
 
 }  // namespace unidist::cli

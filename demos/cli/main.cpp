@@ -64,6 +64,19 @@ int run(int argc, char** argv) {
   infoCmd->add_option("A", info.model, "A model file or a primitive spec")->required();
   infoCmd->add_flag("--json", info.json, "Print one JSON object");
 
+  unidist::cli::ContactsArgs cont;
+  CLI::App* contCmd =
+      app.add_subcommand("contacts", "Local minimum distances within a margin: contact points with normals");
+  contCmd->add_option("A", cont.a, "Model A (as for distance)")->required();
+  contCmd->add_option("B", cont.b, "Model B (as A)")->required();
+  CLI::Option* contPoseA = contCmd->add_option("--pose-a", cont.poseA, "Pose of A (as for distance)");
+  CLI::Option* contPoseB = contCmd->add_option("--pose-b", cont.poseB, "Pose of B (as for distance)");
+  CLI::Option* margin =
+      contCmd->add_option("--margin", cont.margin, "Report local minima with distance <= M >= 0 (default 0)");
+  CLI::Option* maxContacts =
+      contCmd->add_option("--max-contacts", cont.maxContacts, "At most N contacts, deepest first (default 0: all)");
+  contCmd->add_flag("--json", cont.json, "Print one JSON object");
+
   // CLI11 would call an unknown subcommand an unexpected argument; say what it is and what exists.
   std::string known;
   bool isKnown = false;
@@ -90,7 +103,13 @@ int run(int argc, char** argv) {
   dist.hasTol = tol->count() > 0;
   dist.hasInflateA = inflateA->count() > 0;
   dist.hasInflateB = inflateB->count() > 0;
-  const std::string out = distCmd->parsed() ? unidist::cli::runDistance(dist) : unidist::cli::runInfo(info);
+  cont.hasPoseA = contPoseA->count() > 0;
+  cont.hasPoseB = contPoseB->count() > 0;
+  cont.hasMargin = margin->count() > 0;
+  cont.hasMaxContacts = maxContacts->count() > 0;
+  const std::string out = distCmd->parsed()   ? unidist::cli::runDistance(dist)
+                          : contCmd->parsed() ? unidist::cli::runContacts(cont)
+                                              : unidist::cli::runInfo(info);
   std::fwrite(out.data(), 1, out.size(), stdout);
   return std::fflush(stdout) == 0 ? 0 : 1;
 }

@@ -1,94 +1,61 @@
-// Mesh–mesh separation distance: unidist (core/src/pairs/mesh_mesh.cpp) against FCL's BVHModel<OBBRSS> and
-// <RSS> on the same meshes and poses, in the same run. Prints one line per case: distances, the largest
-// relative difference to FCL, and median query times (µs). Usage:
-//   unidist_bench_mesh_vs_fcl [models dir (torus_1k.obj, torus_20k.obj)] [fcl data dir (env.obj, rob.obj)] [tori|env|clouds|build]
+// Meshes: unidist against FCL 0.7's BVHModel<OBBRSS> and <RSS>, same meshes and poses, same run. Groups:
+//   build   hierarchy build: ours (BVH alone, and with the RSS node volumes mesh–mesh queries fit on first use)
+//           against FCL's model build
+//   tori    mesh–mesh separation: tori of ~1k, ~10k, ~100k triangles (generated) and the acceptance 1k/20k
+//           tori, at gaps 1, 1e-2, 1e-4 and linked (tube through the other's hole, 0.5 apart along a circle)
+//   env     FCL's own benchmark room and robot at random separated poses
+//   points  point → mesh: our closestPoint against FCL's distance to a sphere of radius 0
+//   clouds  mesh–cloud and cloud–cloud (no FCL counterpart): ours against brute force
+//   linked  only the linked 1k/20k and 20k/20k tori (for quick measurements; not part of the full run)
+// Every line is printed for people and again as a "csv," line (columns in the header lines). A query line
+// is OK when our answer is certified and within 1e-9 relative of FCL's. Usage:
+//   unidist_bench_mesh_vs_fcl [models dir] [fcl data dir] [build|tori|env|points|clouds|linked]
+#include "mesh/bvh.h"
+#include "mesh_vs_fcl_util.h"
 #include "unidist/adapters/load.h"
 #include "unidist/distance.h"
-#include "unidist/mesh.h"
 #include "unidist/point_cloud.h"
 
-#include <fcl/fcl.h>
-
-#include <algorithm>
-#include <chrono>
-#include <cmath>
 #include <cstdio>
-#include <memory>
 #include <random>
 #include <string>
-#include <vector>
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
-template <class BV>
-std::shared_ptr<fcl::BVHModel<BV>> fclMesh(const unidist::TriangleMesh& m) {
-  auto g = std::make_shared<fcl::BVHModel<BV>>();
-  std::vector<fcl::Vector3d> v(m.vertices().begin(), m.vertices().end());
-  std::vector<fcl::Triangle> t;
-  for (const auto& tri : m.triangles()) t.emplace_back(tri[0], tri[1], tri[2]);
-  g->beginModel();
-  g->addSubModel(v, t);
-  g->endModel();
-  return g;
-}
-
-template <class F>
-double medianMicros(int reps, F&& f) {
-  std::vector<double> times;
-  for (int i = 0; i < reps; ++i) {
-    const auto t0 = Clock::now();
-    f();
-    times.push_back(std::chrono::duration<double, std::micro>(Clock::now() - t0).count());
-  }
-  std::nth_element(times.begin(), times.begin() + reps / 2, times.end());
-  return times[static_cast<std::size_t>(reps / 2)];
-}
-
-template <class BV>
-double fclDistance(const std::shared_ptr<fcl::BVHModel<BV>>& a, const Eigen::Isometry3d& Xa,
-                   const std::shared_ptr<fcl::BVHModel<BV>>& b, const Eigen::Isometry3d& Xb) {
-  fcl::DistanceRequestd request;
-  request.enable_nearest_points = true;
-  fcl::DistanceResultd result;
-  fcl::Transform3d Ta = fcl::Transform3d::Identity(), Tb = fcl::Transform3d::Identity();
-  Ta.linear() = Xa.linear();
-  Ta.translation() = Xa.translation();
-  Tb.linear() = Xb.linear();
-  Tb.translation() = Xb.translation();
-  fcl::distance(a.get(), Ta, b.get(), Tb, request, result);
-  return result.min_distance;
-}
+using bench::medianMicros;
+using unidist::TriangleMesh;
 
 struct Case {
   std::string name;
   Eigen::Isometry3d Xa, Xb;
 };
 
-void run(const std::string& label, const unidist::TriangleMesh& a, const unidist::TriangleMesh& b,
-         const std::vector<Case>& cases, int reps) {
-  const auto oa = fclMesh<fcl::OBBRSSd>(a), ob = fclMesh<fcl::OBBRSSd>(b);
-  const auto ra = fclMesh<fcl::RSSd>(a), rb = fclMesh<fcl::RSSd>(b);
-  (void)unidist::distance(a, Eigen::Isometry3d::Identity(), b, Eigen::Isometry3d::Identity());  // build BVHs
+void queries(const std::string& label, const TriangleMesh& a, const TriangleMesh& b, const std::vector<Case>& cases) {
+  const auto oa = bench::fclMesh<fcl::OBBRSSd>(a), ob = bench::fclMesh<fcl::OBBRSSd>(b);
+  const auto ra = bench::fclMesh<fcl::RSSd>(a), rb = bench::fclMesh<fcl::RSSd>(b);
+  (void)unidist::distance(a, Eigen::Isometry3d::Identity(), b, Eigen::Isometry3d::Identity());  // build ours
   for (const Case& c : cases) {
     const unidist::DistanceResult r = unidist::distance(a, c.Xa, b, c.Xb);
-    const double fo = fclDistance(oa, c.Xa, ob, c.Xb);
-    const double fr = fclDistance(ra, c.Xa, rb, c.Xb);
-    const double tOurs = medianMicros(reps, [&] { (void)unidist::distance(a, c.Xa, b, c.Xb); });
-    const double tObb = medianMicros(reps, [&] { (void)fclDistance(oa, c.Xa, ob, c.Xb); });
-    const double tRss = medianMicros(reps, [&] { (void)fclDistance(ra, c.Xa, rb, c.Xb); });
-    const double rel = std::abs(r.distance - fo) / std::max(1e-300, std::abs(fo));
-    std::printf("%-22s %-16s ours %.12g [%s, %s, %d node pairs]  fcl-obbrss %.12g  rel.diff %.1e  |  "
-                "median us: ours %.1f  obbrss %.1f  rss %.1f (rss d %.12g)\n",
-                label.c_str(), c.name.c_str(), r.distance, toString(r.status), r.method, r.iterations, fo, rel, tOurs,
-                tObb, tRss, fr);
+    const double fo = bench::fclDistance(oa.get(), c.Xa, ob.get(), c.Xb);
+    const double fr = bench::fclDistance(ra.get(), c.Xa, rb.get(), c.Xb);
+    const double tOurs = medianMicros(101, [&] { (void)unidist::distance(a, c.Xa, b, c.Xb); });
+    const double tObb = medianMicros(101, [&] { (void)bench::fclDistance(oa.get(), c.Xa, ob.get(), c.Xb); });
+    const double tRss = medianMicros(101, [&] { (void)bench::fclDistance(ra.get(), c.Xa, rb.get(), c.Xb); });
+    const double rel = std::max(std::abs(r.distance - fo), std::abs(r.distance - fr)) / std::max(1e-300, std::abs(fo));
+    const bool ok = r.status == unidist::Status::Certified && rel <= 1e-9;
+    const double ratio = tOurs / std::min(tObb, tRss);
+    std::printf("%-20s %-9s d %.12g [%s, %d node pairs] fcl %.12g rel %.1e %s | median us: ours %.1f obbrss %.1f "
+                "rss %.1f ratio %.3f\n",
+                label.c_str(), c.name.c_str(), r.distance, toString(r.status), r.iterations, fo, rel, ok ? "OK" : "FAIL",
+                tOurs, tObb, tRss, ratio);
+    std::printf("csv,%s,%s,%zu,%zu,%.17g,%.17g,%.2e,%s,%d,%.2f,%.2f,%.2f,%.4f\n", label.c_str(), c.name.c_str(),
+                a.triangles().size(), b.triangles().size(), r.distance, fo, rel, ok ? "OK" : "FAIL", r.iterations,
+                tOurs, tObb, tRss, ratio);
   }
 }
 
-/// B's translation along x so that the distance is `gap` (bisection on our own distance, outside the timing).
-Eigen::Isometry3d placeAtGap(const unidist::TriangleMesh& a, const unidist::TriangleMesh& b, Eigen::Isometry3d Xb,
-                             double gap) {
+/// B's translation along x so that the distance is about `gap` (bisection on our distance, outside the timing).
+Eigen::Isometry3d placeAtGap(const TriangleMesh& a, const TriangleMesh& b, Eigen::Isometry3d Xb, double gap) {
   double lo = 0, hi = 10 * (a.localBounds().diagonal() + b.localBounds().diagonal());
   for (int i = 0; i < 200; ++i) {
     const double mid = 0.5 * (lo + hi);
@@ -100,111 +67,153 @@ Eigen::Isometry3d placeAtGap(const unidist::TriangleMesh& a, const unidist::Tria
   return Xb;
 }
 
-/// Hierarchy build time, ours (the BVH alone, on a freshly constructed mesh) against FCL's BVHModel build.
-void buildTimes(const std::string& label, const unidist::TriangleMesh& m, int reps) {
-  std::vector<double> ours;
-  for (int i = 0; i < reps; ++i) {
-    const unidist::TriangleMesh fresh(m.vertices(), m.triangles());
-    const auto t0 = Clock::now();
-    (void)fresh.bvh();
-    ours.push_back(std::chrono::duration<double, std::micro>(Clock::now() - t0).count());
+void toriGroup(const std::string& label, const TriangleMesh& a, const TriangleMesh& b, bool linkedOnly = false) {
+  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+  X.linear() = Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitX()).toRotationMatrix();
+  std::vector<Case> cases;
+  for (double gap : {1.0, 1e-2, 1e-4}) {
+    if (linkedOnly) break;
+    char name[32];
+    std::snprintf(name, sizeof name, "sep %g", gap);
+    cases.push_back({name, Eigen::Isometry3d::Identity(), placeAtGap(a, b, X, gap)});
   }
-  std::nth_element(ours.begin(), ours.begin() + reps / 2, ours.end());
-  const double tObb = medianMicros(reps, [&] { (void)fclMesh<fcl::OBBRSSd>(m); });
-  const double tRss = medianMicros(reps, [&] { (void)fclMesh<fcl::RSSd>(m); });
-  std::printf("%-22s build  %zu triangles  median ms: ours %.3f  fcl-obbrss %.3f  fcl-rss %.3f  (fcl/ours %.1fx)\n",
-              label.c_str(), m.triangles().size(), ours[static_cast<std::size_t>(reps / 2)] / 1000, tObb / 1000,
-              tRss / 1000, std::min(tObb, tRss) / ours[static_cast<std::size_t>(reps / 2)]);
+  Eigen::Isometry3d linked = X;  // B's tube through A's hole (both R = 1, r = 0.25)
+  linked.translation() = Eigen::Vector3d(1.0, 0, 0);
+  cases.push_back({"linked", Eigen::Isometry3d::Identity(), linked});
+  queries(label, a, b, cases);
+}
+
+void buildTimes(const std::string& label, const TriangleMesh& m) {
+  const auto fresh = [&] { return std::make_unique<TriangleMesh>(m.vertices(), m.triangles()); };
+  std::vector<double> bvh, all;
+  for (int i = 0; i < 7; ++i) {
+    const auto f = fresh();
+    const auto t0 = bench::Clock::now();
+    const unidist::mesh::MeshBvh& h = f->bvh();
+    const auto t1 = bench::Clock::now();
+    (void)h.rss(f->vertices(), f->triangles());
+    const auto t2 = bench::Clock::now();
+    bvh.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
+    all.push_back(std::chrono::duration<double, std::milli>(t2 - t0).count());
+  }
+  std::sort(bvh.begin(), bvh.end());
+  std::sort(all.begin(), all.end());
+  const double tObb = medianMicros(21, [&] { (void)bench::fclMesh<fcl::OBBRSSd>(m); }) / 1000;
+  const double tRss = medianMicros(21, [&] { (void)bench::fclMesh<fcl::RSSd>(m); }) / 1000;
+  const double best = std::min(tObb, tRss);
+  std::printf("%-20s build %zu triangles  median ms: ours bvh %.3f, bvh+rss %.3f  fcl obbrss %.3f  rss %.3f  "
+              "(fcl/ours %.1fx, with rss %.1fx)\n",
+              label.c_str(), m.triangles().size(), bvh[3], all[3], tObb, tRss, best / bvh[3], best / all[3]);
+  std::printf("csv,build,%s,%zu,%.4f,%.4f,%.4f,%.4f,%.2f,%.2f\n", label.c_str(), m.triangles().size(), bvh[3], all[3],
+              tObb, tRss, best / bvh[3], best / all[3]);
+}
+
+/// Point → mesh: points within 2 % of the size from the surface ("near") and uniform in the box grown by
+/// its size ("far"). Median over the points of one query's time.
+void pointQueries(const std::string& label, const TriangleMesh& m) {
+  const auto fo = bench::fclMesh<fcl::OBBRSSd>(m);
+  const auto fr = bench::fclMesh<fcl::RSSd>(m);
+  const auto point = std::make_shared<fcl::Sphered>(0.0);
+  (void)m.closestPoint(Eigen::Vector3d::Zero());  // build ours
+  const unidist::Aabb box = m.localBounds();
+  const double size = box.diagonal();
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(0, 1), v(-1, 1);
+  for (const char* kind : {"near", "far"}) {
+    std::vector<Eigen::Vector3d> pts;
+    while (pts.size() < 2000) {
+      const Eigen::Vector3d q = box.min - 0.5 * size * Eigen::Vector3d::Ones() +
+                                (box.max - box.min + size * Eigen::Vector3d::Ones()).cwiseProduct(
+                                    Eigen::Vector3d(u(rng), u(rng), u(rng)));
+      if (kind[0] == 'f') {
+        pts.push_back(q);
+        continue;
+      }
+      const unidist::SurfacePoint s = m.closestPoint(q);
+      pts.push_back(s.point + 0.02 * size * v(rng) * s.normal);
+    }
+    std::vector<double> ours, obb, rss;
+    double worst = 0;
+    for (const Eigen::Vector3d& q : pts) {
+      Eigen::Isometry3d Xq = Eigen::Isometry3d::Identity();
+      Xq.translation() = q;
+      const double d = std::abs(m.closestPoint(q).signedDistance);
+      const double f = bench::fclDistance(fo.get(), Eigen::Isometry3d::Identity(), point.get(), Xq);
+      worst = std::max(worst, std::abs(d - f) / std::max(1e-300, f));
+      ours.push_back(medianMicros(5, [&] { (void)m.closestPoint(q); }));
+      obb.push_back(medianMicros(5, [&] { (void)bench::fclDistance(fo.get(), Eigen::Isometry3d::Identity(), point.get(), Xq); }));
+      rss.push_back(medianMicros(5, [&] { (void)bench::fclDistance(fr.get(), Eigen::Isometry3d::Identity(), point.get(), Xq); }));
+    }
+    const auto median = [](std::vector<double>& t) {
+      std::nth_element(t.begin(), t.begin() + t.size() / 2, t.end());
+      return t[t.size() / 2];
+    };
+    const double a = median(ours), b = median(obb), c = median(rss);
+    std::printf("%-20s point %-4s %zu triangles  max rel diff %.1e | median us: ours %.2f obbrss %.2f rss %.2f ratio %.3f\n",
+                label.c_str(), kind, m.triangles().size(), worst, a, b, c, a / std::min(b, c));
+    std::printf("csv,point,%s,%s,%zu,%.2e,%.3f,%.3f,%.3f,%.4f\n", label.c_str(), kind, m.triangles().size(), worst, a, b,
+                c, a / std::min(b, c));
+  }
 }
 
 }  // namespace
 
+void cloudGroup(const std::string& models, const TriangleMesh& t20);  // mesh_vs_fcl_clouds.cpp
+
 int main(int argc, char** argv) {
   const std::string models = argc > 1 ? argv[1] : "/work/shared/acceptance/models";
   const std::string fclData = argc > 2 ? argv[2] : "/work/shared/data/fcl";
+  const std::string only = argc > 3 ? argv[3] : "";
+  const auto want = [&](const char* g) { return only.empty() || only == g; };
   auto mesh = [](const std::string& path) {
-    auto m = std::dynamic_pointer_cast<const unidist::TriangleMesh>(unidist::loadModel(path));
+    auto m = std::dynamic_pointer_cast<const TriangleMesh>(unidist::loadModel(path));
     if (!m) throw std::runtime_error(path + " is not a mesh");
     return m;
   };
   const auto t1 = mesh(models + "/torus_1k.obj"), t20 = mesh(models + "/torus_20k.obj");
   const auto env = mesh(fclData + "/env.obj"), rob = mesh(fclData + "/rob.obj");
-
-  const std::string only = argc > 3 ? argv[3] : "";  // "tori", "env", "clouds" or "build": one group only
-  if (only.empty() || only == "build") {
-    buildTimes("torus_1k", *t1, 21);
-    buildTimes("torus_20k", *t20, 11);
-    buildTimes("env", *env, 21);
-    if (only == "build") return 0;
+  const auto g1 = bench::torus(1.0, 0.25, 32, 16), g10 = bench::torus(1.0, 0.25, 100, 50),
+             g100 = bench::torus(1.0, 0.25, 316, 158);
+  if (want("build")) {
+    std::printf("# csv,build,mesh,triangles,ours_bvh_ms,ours_bvh_rss_ms,fcl_obbrss_ms,fcl_rss_ms,fcl_over_ours,fcl_over_ours_with_rss\n");
+    for (const auto& [name, m] : {std::pair<const char*, const TriangleMesh*>{"torus 1k", g1.get()},
+                                  {"torus 10k", g10.get()}, {"torus 100k", g100.get()}, {"torus_20k.obj", t20.get()},
+                                  {"env", env.get()}, {"rob", rob.get()}})
+      buildTimes(name, *m);
   }
-  if (only != "env" && only != "clouds") {
-    std::vector<Case> cases;
-    Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
-    X.linear() = Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitX()).toRotationMatrix();
-    for (double gap : {1.0, 1e-2, 1e-4}) {
-      char name[32];
-      std::snprintf(name, sizeof name, "sep %g", gap);
-      cases.push_back({name, Eigen::Isometry3d::Identity(), placeAtGap(*t1, *t20, X, gap)});
-    }
-    Eigen::Isometry3d linked = X;  // B's tube through A's hole: 0.5 apart all along a circle (torus R=1, r=0.25)
-    linked.translation() = Eigen::Vector3d(1.0, 0, 0);
-    cases.push_back({"linked", Eigen::Isometry3d::Identity(), linked});
-    run("torus_1k/torus_20k", *t1, *t20, cases, 51);
-    std::vector<Case> same;
-    for (double gap : {1.0, 1e-2, 1e-4}) {
-      char name[32];
-      std::snprintf(name, sizeof name, "sep %g", gap);
-      same.push_back({name, Eigen::Isometry3d::Identity(), placeAtGap(*t20, *t20, X, gap)});
-    }
-    same.push_back({"linked", Eigen::Isometry3d::Identity(), linked});
-    run("torus_20k/torus_20k", *t20, *t20, same, 51);
-    std::vector<Case> small;
-    for (double gap : {1.0, 1e-2, 1e-4}) {
-      char name[32];
-      std::snprintf(name, sizeof name, "sep %g", gap);
-      small.push_back({name, Eigen::Isometry3d::Identity(), placeAtGap(*t1, *t1, X, gap)});
-    }
-    run("torus_1k/torus_1k", *t1, *t1, small, 101);
+  if (want("tori")) {
+    std::printf("# csv,pair,case,triangles_a,triangles_b,ours,fcl_obbrss,rel_diff,check,node_pairs,ours_us,fcl_obbrss_us,fcl_rss_us,ratio\n");
+    toriGroup("torus 1k/1k", *g1, *g1);
+    toriGroup("torus 10k/10k", *g10, *g10);
+    toriGroup("torus 100k/100k", *g100, *g100);
+    toriGroup("torus_1k/torus_20k", *t1, *t20);
+    toriGroup("torus_20k/torus_20k", *t20, *t20);
   }
-  if (only != "tori" && only != "clouds") {
+  if (only == "linked") {  // the hardest cases alone (not in the default run)
+    toriGroup("torus_1k/torus_20k", *t1, *t20, true);
+    toriGroup("torus_20k/torus_20k", *t20, *t20, true);
+  }
+  if (want("env")) {
     std::mt19937_64 rng(42);
     std::uniform_real_distribution<double> u(-3000, 3000);
     std::normal_distribution<double> n01;
     std::vector<Case> cases;
-    while (cases.size() < 6) {
+    while (cases.size() < 8) {
       Eigen::Isometry3d Xb = Eigen::Isometry3d::Identity();
       Xb.linear() = Eigen::Quaterniond(n01(rng), n01(rng), n01(rng), n01(rng)).normalized().toRotationMatrix();
       Xb.translation() = Eigen::Vector3d(u(rng), u(rng), u(rng));
-      const unidist::DistanceResult r = unidist::distance(*env, Eigen::Isometry3d::Identity(), *rob, Xb);
-      if (r.distance <= 0) continue;
+      if (unidist::distance(*env, Eigen::Isometry3d::Identity(), *rob, Xb).distance <= 0) continue;
       cases.push_back({"pose " + std::to_string(cases.size()), Eigen::Isometry3d::Identity(), Xb});
     }
-    run("env/rob", *env, *rob, cases, 101);
+    queries("env/rob", *env, *rob, cases);
   }
-  if (only != "tori" && only != "env") {
-    // Mesh–cloud and cloud–cloud (no FCL counterpart here): ours only, against a brute-force check.
-    const auto cloud = unidist::loadModel(models + "/torus_cloud.xyz");
-    const auto* pc = dynamic_cast<const unidist::PointCloud*>(cloud.get());
-    if (!pc) throw std::runtime_error("torus_cloud.xyz is not a cloud");
-    Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
-    X.linear() = Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitX()).toRotationMatrix();
-    for (double shift : {3.0, 2.51, 1.0}) {
-      X.translation() = Eigen::Vector3d(shift, 0, 0);
-      for (int kind = 0; kind < 2; ++kind) {
-        const unidist::Model& a = kind == 0 ? static_cast<const unidist::Model&>(*t20) : *pc;
-        const unidist::DistanceResult r = unidist::distance(a, Eigen::Isometry3d::Identity(), *pc, X);
-        double brute = std::numeric_limits<double>::infinity();
-        if (kind == 1)
-          for (const auto& p : pc->points())
-            for (const auto& q : pc->points()) brute = std::min(brute, (p - X * q).norm());
-        else
-          for (const auto& q : pc->points()) brute = std::min(brute, std::abs(t20->closestPoint(X * q).signedDistance));
-        const double t = medianMicros(51, [&] { (void)unidist::distance(a, Eigen::Isometry3d::Identity(), *pc, X); });
-        std::printf("%-22s shift %-5g ours %.12g [%s, %s, %d node pairs]  brute %.12g  |  median us: ours %.1f\n",
-                    kind == 0 ? "torus_20k/torus_cloud" : "torus_cloud/torus_cloud", shift, r.distance,
-                    toString(r.status), r.method, r.iterations, brute, t);
-      }
-    }
+  if (want("points")) {
+    std::printf("# csv,point,mesh,kind,triangles,max_rel_diff,ours_us,fcl_obbrss_us,fcl_rss_us,ratio\n");
+    pointQueries("torus 1k", *g1);
+    pointQueries("torus 10k", *g10);
+    pointQueries("torus 100k", *g100);
+    pointQueries("env", *env);
   }
+  if (want("clouds")) cloudGroup(models, *t20);
   return 0;
 }

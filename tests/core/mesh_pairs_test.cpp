@@ -1,8 +1,12 @@
 // Mesh–mesh, mesh–cloud and cloud–cloud global distance (core/src/pairs/mesh_mesh.cpp) against exact brute
 // force over all triangle pairs (triangle–triangle distance written again here in long double: vertex–triangle
 // from the fixtures, segment–segment by normal equations with endpoint fallbacks, and an edge–plane crossing
-// test with barycentric coordinates), at fixed random poses.
+// test with barycentric coordinates), at fixed random poses. Also the node volumes the search prunes with:
+// every rectangle swept sphere (RSS) holds its node's triangles, and the RSS–RSS lower bound never exceeds
+// the brute-force distance between two nodes' triangles (flat and sliver nodes, scales 1e-4 to 1e4).
 #include "core/mesh_fixtures.h"
+#include "mesh/bvh.h"
+#include "mesh/rss.h"
 #include "unidist/distance.h"
 #include "unidist/mesh.h"
 #include "unidist/point_cloud.h"
@@ -344,6 +348,145 @@ TEST(MeshPairs, BudgetExhaustedIsBoundedAndHonest) {
   EXPECT_GE(r.upperBound, truth);
   EXPECT_NEAR(truth, 0.3, 0.05);
   EXPECT_EQ(r.status, unidist::Status::Bounded);
+}
+
+// ---- Node volumes (mesh/rss.h) -------------------------------------------------------------------------
+
+/// Distance (long double) from p to the RSS's rectangle, minus its radius: <= 0 when p is inside.
+LD outsideRss(const unidist::mesh::Rss& r, const Vec& p) {
+  const VecL d = meshfix::toL(p) - meshfix::toL(r.center);
+  const Eigen::Matrix<LD, 3, 3> U = r.axes.cast<LD>();
+  const LD x = U.col(0).dot(d), y = U.col(1).dot(d), z = U.col(2).dot(d);
+  const LD hx = r.half[0], hy = r.half[1];
+  const LD gx = std::max<LD>(0, std::abs(x) - hx), gy = std::max<LD>(0, std::abs(y) - hy);
+  return std::sqrt(gx * gx + gy * gy + z * z) - static_cast<LD>(r.radius);
+}
+
+/// Meshes with awkward nodes: curved, boxy, flat (every node's RSS has radius ~0), slivers (needle triangles
+/// along a line: nodes with one side ~0), at scales 1e-4, 1 and 1e4, the small and large ones far from the origin.
+std::vector<Family> volumeFamilies() {
+  std::vector<Family> f;
+  f.push_back({"torus", {meshfix::torus(0.8, 0.25, 24, 12), false}});
+  f.push_back({"box", {meshfix::gridBox(Vec(0.5, 0.3, 0.4), 3), false}});
+  Soup flat = meshfix::wavySheet(8);
+  for (Vec& v : flat.vertices) v.z() = 0;
+  f.push_back({"flat", {flat, false}});
+  Soup needle;
+  for (int i = 0; i <= 24; ++i) {
+    needle.vertices.emplace_back(0.1 * i, 0, 0);
+    needle.vertices.emplace_back(0.1 * i + 0.05, 1e-7 * (1 + i % 3), 1e-8 * i);
+  }
+  for (std::uint32_t i = 0; i + 3 < needle.vertices.size(); i += 2) {
+    needle.triangles.push_back({i, i + 2, i + 1});
+    needle.triangles.push_back({i + 1, i + 2, i + 3});
+  }
+  f.push_back({"sliver", {needle, false}});
+  const std::size_t base = f.size();
+  for (double k : {1e-4, 1e4})
+    for (std::size_t i = 0; i < base; ++i)
+      f.push_back({f[i].name + " x" + std::to_string(k), {meshfix::scaled(f[i].shape.soup, k, Vec(3e3 * k, -1e3 * k, 0)), false}});
+  return f;
+}
+
+TEST(MeshVolumes, EveryTriangleIsInsideItsNodesRss) {
+  for (const Family& fam : volumeFamilies()) {
+    const TriangleMesh m(fam.shape.soup.vertices, fam.shape.soup.triangles);
+    const unidist::mesh::MeshBvh& h = m.bvh();
+    EXPECT_FALSE(h.rssFitted());
+    const std::vector<unidist::mesh::Rss>& rss = h.rss(m.vertices(), m.triangles());
+    ASSERT_TRUE(h.rssFitted());
+    ASSERT_EQ(rss.size(), h.tree.nodes.size());
+    LD worst = -1;
+    for (std::size_t n = 0; n < rss.size(); ++n) {
+      ASSERT_TRUE(rss[n].axes.allFinite() && std::isfinite(rss[n].radius)) << fam.name;
+      // The volume is convex and a triangle is the hull of its vertices: the vertices suffice.
+      for (std::uint32_t s = h.ranges[n][0]; s < h.ranges[n][1]; ++s)
+        for (std::uint32_t v : m.triangles()[h.tree.order[s]]) worst = std::max(worst, outsideRss(rss[n], m.vertices()[v]));
+    }
+    EXPECT_LE(worst, 0.0L) << fam.name;
+  }
+}
+
+TEST(MeshVolumes, FitHoldsDegeneratePointSets) {
+  const std::vector<std::vector<Vec>> sets = {
+      {Vec(1, 2, 3)}, {Vec(1, 2, 3), Vec(1, 2, 3), Vec(1, 2, 3)}, {Vec(0, 0, 0), Vec(1, 1, 1), Vec(2, 2, 2)},
+      {Vec(1e4, 0, 0), Vec(1e4 + 1e-6, 0, 0), Vec(1e4, 1e-6, 0)}};
+  for (const auto& pts : sets) {
+    const unidist::mesh::Rss r = unidist::mesh::fitRss(pts.data(), pts.size());
+    ASSERT_TRUE(r.axes.allFinite());
+    EXPECT_NEAR((r.axes.transpose() * r.axes - Eigen::Matrix3d::Identity()).norm(), 0.0, 1e-14);
+    for (const Vec& p : pts) EXPECT_LE(outsideRss(r, p), 0.0L);
+  }
+}
+
+TEST(MeshVolumes, RssLowerBoundNeverExceedsTheTrianglesDistance) {
+  const std::vector<Family> fam = volumeFamilies();
+  std::mt19937_64 rng(424242);
+  int checked = 0, useful = 0;
+  for (std::size_t i = 0; i < fam.size(); ++i) {
+    const std::size_t j = (i * 5 + 3) % fam.size();
+    const Soup& sa = fam[i].shape.soup;
+    const Soup& sb = fam[j].shape.soup;
+    const TriangleMesh ma(sa.vertices, sa.triangles), mb(sb.vertices, sb.triangles);
+    const auto& ha = ma.bvh();
+    const auto& hb = mb.bvh();
+    const auto& ra = ha.rss(ma.vertices(), ma.triangles());
+    const auto& rb = hb.rss(mb.vertices(), mb.triangles());
+    const double size = std::max(ma.localBounds().diagonal(), mb.localBounds().diagonal());
+    for (int k = 0; k < 30; ++k) {
+      // B posed near A: B's centre moved to A's centre, then shifted by up to the size.
+      Eigen::Isometry3d X = randomPose(rng, 0.0);
+      X.translation() = ma.localBounds().center() - X.linear() * mb.localBounds().center() +
+                        size * Vec::Random() * (k % 3 == 0 ? 0.05 : 0.6);
+      // Random nodes of at most 64 triangles (brute force stays cheap), both small and large.
+      auto pick = [&](const unidist::mesh::MeshBvh& h) {
+        for (;;) {
+          const auto n = static_cast<std::uint32_t>(rng() % h.tree.nodes.size());
+          if (h.ranges[n][1] - h.ranges[n][0] <= 64) return n;
+        }
+      };
+      const std::uint32_t na = pick(ha), nb = pick(hb);
+      LD truth = std::numeric_limits<LD>::infinity();
+      for (std::uint32_t s = ha.ranges[na][0]; s < ha.ranges[na][1]; ++s)
+        for (std::uint32_t u = hb.ranges[nb][0]; u < hb.ranges[nb][1]; ++u) {
+          const auto& ta = ma.triangles()[ha.tree.order[s]];
+          const auto& tb = mb.triangles()[hb.tree.order[u]];
+          const std::array<VecL, 3> A = {meshfix::toL(ma.vertices()[ta[0]]), meshfix::toL(ma.vertices()[ta[1]]),
+                                         meshfix::toL(ma.vertices()[ta[2]])};
+          std::array<VecL, 3> B;
+          for (int c = 0; c < 3; ++c) B[c] = X.cast<LD>() * meshfix::toL(mb.vertices()[tb[c]]);
+          truth = std::min(truth, triTriSq(A, B));
+        }
+      truth = std::sqrt(truth);
+      const double lb = unidist::mesh::rssLowerBound(ra[na], rb[nb], X.linear(), X.translation());
+      const double early = unidist::mesh::rssLowerBound(ra[na], rb[nb], X.linear(), X.translation(), 0.5 * lb);
+      // Rounding of the coordinates (a few ε of the scale) is the callers' slack, not the bound's.
+      const LD slack = 1e-13L * static_cast<LD>(size + X.translation().norm());
+      EXPECT_LE(static_cast<LD>(lb), truth + slack) << fam[i].name << " / " << fam[j].name << " #" << k;
+      EXPECT_LE(static_cast<LD>(early), truth + slack) << fam[i].name << " / " << fam[j].name << " #" << k;
+      ++checked;
+      if (truth > 0 && lb > 0.5 * static_cast<double>(truth)) ++useful;
+    }
+  }
+  EXPECT_EQ(checked, static_cast<int>(fam.size()) * 30);
+  EXPECT_GT(useful, checked / 4);  // not vacuous: the bound is close on many separated pairs
+}
+
+TEST(MeshVolumes, LinkedToriMatchBruteForceThroughTheRssSearch) {
+  // The case the RSS bounds were added for: a whole circle of triangle pairs at nearly the same distance.
+  const Shape t{meshfix::torus(1.0, 0.25, 32, 16), false};
+  Eigen::Isometry3d Xb = Eigen::Isometry3d::Identity();
+  Xb.linear() = Eigen::AngleAxisd(M_PI / 2, Vec::UnitX()).toRotationMatrix();
+  Xb.translation() = Vec(1.0, 0, 0);
+  const double truth = bruteDistance(t, Eigen::Isometry3d::Identity(), t, Xb);
+  checkSeparated(t, Eigen::Isometry3d::Identity(), t, Xb, truth, "linked tori");
+  for (double k : {1e-4, 1e4}) {
+    const Shape s{meshfix::scaled(t.soup, k, Vec(2e3 * k, 0, 0)), false};
+    Eigen::Isometry3d Xa = Eigen::Isometry3d::Identity(), Xs = Xb;
+    Xa.translation() = Vec(-2e3 * k, 0, 0);
+    Xs.translation() = k * Vec(1.0, 0, 0) - Xb.linear() * Vec(2e3 * k, 0, 0);
+    checkSeparated(s, Xa, s, Xs, bruteDistance(s, Xa, s, Xs), "linked tori x" + std::to_string(k));
+  }
 }
 
 }  // namespace

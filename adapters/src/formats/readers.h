@@ -1,5 +1,5 @@
 // The model file readers plugged into the format table of adapters/src/load.cpp (modelFormats()). Each reads
-// the whole file, checks it strictly and returns a TriangleMesh or a PointCloud; every problem is an
+// the whole file, checks it strictly and returns a TriangleMesh, a PointCloud or a NurbsModel; every problem is an
 // InputError naming the file and the line ("<path>:<line>: ...") or byte offset ("<path>: byte <n>: ...").
 // What each accepts is documented at the top of its source file; why these are hand-written rather than a
 // library's is in docs/dependencies.md.
@@ -22,6 +22,12 @@ std::shared_ptr<const Model> readStl(const std::string& path);
 std::shared_ptr<const Model> readPly(const std::string& path);
 /// XYZ point cloud: "x y z" or "x y z nx ny nz" per line.
 std::shared_ptr<const Model> readXyz(const std::string& path);
+
+/// unidist NURBS JSON (.unurbs.json): a NurbsModel. adapters/src/formats/unurbs_reader.cpp.
+std::shared_ptr<const Model> readUnurbs(const std::string& path);
+/// IGES: the rational B-spline surfaces (entity 128) of the file, as an open NurbsModel.
+/// adapters/src/formats/iges_reader.cpp.
+std::shared_ptr<const Model> readIges(const std::string& path);
 
 /// Builds the mesh; the model's own InputError (e.g. every triangle has zero area) gets "<path>: " in front.
 std::shared_ptr<const Model> makeMesh(const std::string& path, std::vector<Eigen::Vector3d> vertices,

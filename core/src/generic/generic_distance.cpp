@@ -1,10 +1,11 @@
 // The generic path for any two models (Johnson & Cohen's unified distance, made global): alternating
 // projection from several starts finds a good pair fast; branch and bound over surface cells then proves
-// how far the answer can be from the truth. Penetrating solids get proved bounds on the translation depth
-// (the deepest surface point below, a supporting-plane escape above) and the deepest-point estimate.
+// how far the answer can be from the truth. Penetrating solids go on to the global translation-depth search
+// (generic/translation_depth.h), seeded with the deepest surface point found here.
 #include "generic/generic_distance.h"
 
 #include "generic/surface_search.h"
+#include "generic/translation_depth.h"
 #include "pairs/analytic.h"
 
 #include <algorithm>
@@ -16,6 +17,10 @@ namespace {
 
 // Surface branch and bound budget (field evaluations) per direction of the search.
 constexpr int kSurfaceBudget = 400000;
+// Evaluations a surface search may still spend after it has proved two solids overlap.
+constexpr int kSeedBudget = 4000;
+// Evaluations per surface for a separation test of the depth search.
+constexpr int kVerdictBudget = 20000;
 
 struct DeepestPoint {
   SurfaceMinimum search;  // min over this surface of the other model's field
@@ -42,10 +47,15 @@ DistanceResult genericPair(const PosedModel& a, const PosedModel& b, const Query
   //    field sign, so for it the search over the other surface is what the contract defines.
   const bool solidA = a.model.isSolid(), solidB = b.model.isSolid();
   std::vector<DeepestPoint> searches;
+  //    When both are solids a negative value proves an overlap, and the deepest point found then only seeds
+  //    the depth search: a short extra budget suffices.
+  const int onceNegative = solidA && solidB ? kSeedBudget : kSurfaceBudget;
+  // A separation test for the depth search only needs a sign: an exhausted budget just counts as "not proved".
+  const int budget = ctx.overlapVerdictOnly ? kVerdictBudget : kSurfaceBudget;
   if (solidB || !solidA)
-    searches.push_back({minimizeFieldOverSurface(a, b, fieldValue(b, best.onA), best.onA, 0.5 * tol, kSurfaceBudget), true});
+    searches.push_back({minimizeFieldOverSurface(a, b, fieldValue(b, best.onA), best.onA, 0.5 * tol, budget, onceNegative), true});
   if (solidA || !solidB)
-    searches.push_back({minimizeFieldOverSurface(b, a, fieldValue(a, best.onB), best.onB, 0.5 * tol, kSurfaceBudget), false});
+    searches.push_back({minimizeFieldOverSurface(b, a, fieldValue(a, best.onB), best.onB, 0.5 * tol, budget, onceNegative), false});
   for (const DeepestPoint& s : searches) iterations += s.search.evaluations;
 
   // Every search's lower bound bounds the same minimum (when separated, or for models without an inside).
@@ -62,6 +72,7 @@ DistanceResult genericPair(const PosedModel& a, const PosedModel& b, const Query
   // containment, where one surface lies wholly inside the other solid).
   bool provedApart = true;
   for (const DeepestPoint& s : searches) provedApart = provedApart && s.search.lowerBound > 0;
+  if (ctx.overlapVerdictOnly && solidA && solidB && value < 0) return overlapVerdict();
 
   DistanceResult r;
   r.iterations = iterations;
@@ -104,21 +115,16 @@ DistanceResult genericPair(const PosedModel& a, const PosedModel& b, const Query
     return r;
   }
 
-  // 3. Two solids overlap. Proved: the deepest surface point must travel at least its depth, so
-  //    distance <= value; a supporting-plane gap along any direction bounds the depth from the other side.
-  r.distance = value;
-  r.normal = deepest->ofA ? Eigen::Vector3d(-onField.normal) : onField.normal;
-  r.upperBound = value;
-  double lowerSd = -std::numeric_limits<double>::infinity();
-  std::vector<Eigen::Vector3d> directions = {r.normal};
-  for (int i = 0; i < 3; ++i) {
-    directions.push_back(Eigen::Vector3d::Unit(i));
-    directions.push_back(-Eigen::Vector3d::Unit(i));
-  }
-  for (const Eigen::Vector3d& u : directions) lowerSd = std::max(lowerSd, supportGapLowerBound(a, b, u));
-  r.lowerBound = std::min(lowerSd, r.distance);
-  settleStatus(r, tol);
-  return r;
+  // 3. Two solids overlap: the global translation depth, bracketed by proved bounds.
+  if (ctx.overlapVerdictOnly) return overlapVerdict();
+  OverlapSeed seed;
+  seed.provedDepth = -value;  // the deepest surface point must travel at least its depth
+  seed.deepPoint = deepest->search.point;
+  seed.direction = deepest->ofA ? Eigen::Vector3d(-onField.normal) : onField.normal;
+  addPlaneEscapes(a, b, seed);
+  DistanceResult depth = translationalDepth(a, b, ctx, seed);
+  depth.iterations += iterations;
+  return depth;
 }
 
 }  // namespace unidist::detail

@@ -21,7 +21,8 @@ double fieldValue(const PosedModel& field, const Eigen::Vector3d& p_W) {
 }
 
 SurfaceMinimum minimizeFieldOverSurface(const PosedModel& surface, const PosedModel& field, double upperHint,
-                                        const Eigen::Vector3d& hintPoint, double tolerance, int budget) {
+                                        const Eigen::Vector3d& hintPoint, double tolerance, int budget,
+                                        int budgetOnceNegative) {
   auto fieldAt = [&](const Eigen::Vector3d& p_W) { return fieldValue(field, p_W); };
 
   SurfaceMinimum best;
@@ -42,10 +43,16 @@ SurfaceMinimum minimizeFieldOverSurface(const PosedModel& surface, const PosedMo
   for (const SurfaceCell& c : surface.model.surfaceCells()) visit(c);
 
   std::vector<SurfaceCell> children;
+  int firstNegative = -1;  // evaluations spent when a negative value was first found
   while (!open.empty()) {
     const OpenCell top = open.top();
     if (top.lower >= best.value - tolerance) break;  // all the rest are pruned
     if (best.evaluations >= budget) {
+      best.exhausted = true;
+      break;
+    }
+    if (best.value < 0 && firstNegative < 0) firstNegative = best.evaluations;
+    if (firstNegative >= 0 && best.evaluations - firstNegative >= budgetOnceNegative) {
       best.exhausted = true;
       break;
     }

@@ -41,7 +41,10 @@ struct SurfaceMinimum {
 /// min over points p of `surface`'s surface of the field of `field` at p: its signed distance when it is a
 /// solid, else its unsigned distance. Cells are pruned by field(centre) − radius (the field is 1-Lipschitz).
 /// `upperHint`, with `hintPoint`, is a known value (e.g. from alternation) that starts the pruning.
+/// `budgetOnceNegative` caps the evaluations spent after the first negative value (an overlap of two solids,
+/// where the deepest point only seeds the depth search and a flat deepest region would exhaust any budget).
 SurfaceMinimum minimizeFieldOverSurface(const PosedModel& surface, const PosedModel& field, double upperHint,
-                                        const Eigen::Vector3d& hintPoint, double tolerance, int budget);
+                                        const Eigen::Vector3d& hintPoint, double tolerance, int budget,
+                                        int budgetOnceNegative = std::numeric_limits<int>::max());
 
 }  // namespace unidist::detail

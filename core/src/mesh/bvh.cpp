@@ -6,6 +6,7 @@
 
 namespace unidist::mesh {
 namespace {
+constexpr std::uint32_t kRssScanBelow = 256;  // nodes up to this many triangles fit their RSS to their vertices
 
 constexpr int kBins = 16;
 constexpr int kSahDepth = 48;  // below this depth: median splits, which halve the count (depth bound)
@@ -245,8 +246,67 @@ std::vector<std::array<std::uint32_t, 2>> nodeRanges(const Bvh& bvh) {
 }
 
 std::size_t MeshBvh::memoryBytes() const {
+  const std::size_t rssBytes = rssFitted() ? lazyRss->volumes.capacity() * sizeof(Rss) : 0;
   return tree.memoryBytes() + spheres.capacity() * sizeof(BoundingSphere) + cones.capacity() * sizeof(NormalCone) +
-         ranges.capacity() * sizeof(ranges[0]);
+         ranges.capacity() * sizeof(ranges[0]) + rssBytes;
+}
+
+const std::vector<Rss>& MeshBvh::rss(const std::vector<Eigen::Vector3d>& vertices,
+                                     const std::vector<TriangleMesh::Triangle>& triangles) const {
+  std::call_once(lazyRss->once, [&] {
+    lazyRss->volumes = fitNodeRss(*this, vertices, triangles);
+    lazyRss->ready.store(true, std::memory_order_release);
+  });
+  return lazyRss->volumes;
+}
+
+std::vector<Rss> fitNodeRss(const MeshBvh& bvh, const std::vector<Eigen::Vector3d>& vertices,
+                            const std::vector<TriangleMesh::Triangle>& triangles) {
+  // Axes: principal axes of the node's vertices (with repeats), from moments summed bottom-up (children are
+  // stored after their parents, so a reverse sweep sees them first), about the root's centre.
+  // Extents: small nodes scan their vertices; larger ones merge their children's volumes, O(1) each. Measured
+  // on the linked 1k/20k and 20k/20k tori: scanning up to kRssScanBelow triangles visits 0.3 % more node pairs
+  // than scanning every node (merging above 16 or 32: 8–11 % more), and keeps the fit O(n log kRssScanBelow).
+  const std::size_t nodes = bvh.tree.nodes.size();
+  std::vector<Rss> out(nodes);
+  if (nodes == 0) return out;
+  const Eigen::Vector3d origin = bvh.tree.nodes[0].center();
+  struct Moments {
+    double count = 0;
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    Eigen::Matrix3d outer = Eigen::Matrix3d::Zero();
+  };
+  std::vector<Moments> moments(nodes);
+  // The vertices in slot order, once: every node's points are then one contiguous, sequentially scanned range.
+  const std::vector<std::uint32_t>& order = bvh.tree.order;
+  std::vector<Eigen::Vector3d> points(3 * order.size());
+  for (std::size_t s = 0; s < order.size(); ++s)
+    for (int k = 0; k < 3; ++k) points[3 * s + k] = vertices[triangles[order[s]][k]];
+  for (std::size_t i = nodes; i-- > 0;) {
+    const BvhNode& node = bvh.tree.nodes[i];
+    const auto [begin, end] = bvh.ranges[i];
+    const Eigen::Vector3d* p = points.data() + 3 * static_cast<std::size_t>(begin);
+    const std::size_t n = 3 * static_cast<std::size_t>(end - begin);
+    Moments& m = moments[i];
+    if (node.leaf()) {
+      for (std::size_t k = 0; k < n; ++k) {
+        const Eigen::Vector3d d = p[k] - origin;
+        m.count += 1;
+        m.sum += d;
+        m.outer.noalias() += d * d.transpose();
+      }
+    } else {
+      const Moments &l = moments[node.first], &r = moments[node.first + 1];
+      m.count = l.count + r.count;
+      m.sum = l.sum + r.sum;
+      m.outer = l.outer + r.outer;
+    }
+    const Eigen::Vector3d mean = m.sum / m.count;
+    const Eigen::Matrix3d axes = principalAxes(m.outer / m.count - mean * mean.transpose());
+    const bool scan = node.leaf() || end - begin <= kRssScanBelow;
+    out[i] = scan ? fitRss(axes, p, n) : mergeRss(axes, out[node.first], out[node.first + 1]);
+  }
+  return out;
 }
 
 MeshBvh buildMeshBvh(const std::vector<Eigen::Vector3d>& vertices,

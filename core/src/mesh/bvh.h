@@ -20,17 +20,24 @@
 //    triangles, padded by a few ulps: it provably holds every triangle (a triangle is the hull of its vertices);
 //  * a normal cone (axis, half-angle) holding the unit face normals of the node's triangles (the face normals
 //    only: a search for local minima at edges and vertices must widen the leaves' cones by the neighbours');
-//  * the node's slot range.
+//  * the node's slot range;
+//  * a rectangle swept sphere (RSS, mesh/rss.h) holding the node's triangles, for mesh–mesh pair bounds (fitted
+//    to the vertices; above 256 triangles merged from the children). Fitted lazily by rss(), on the first
+//    mesh–mesh query, once and thread-safe: point-query-only use never pays for it.
 // Which volume prunes point queries best was measured (tests/bench/mesh_build.cpp, docs in the report): the
 // AABB alone, the ball alone, or the larger of the two lower bounds. The AABB is used.
 #pragma once
 
+#include "mesh/rss.h"
 #include "unidist/mesh.h"
 
 #include <Eigen/Core>
 
 #include <array>
+#include <atomic>
 #include <cstdint>
+#include <memory>
+#include <mutex>
 #include <vector>
 
 namespace unidist::mesh {
@@ -142,7 +149,24 @@ struct MeshBvh {
   std::vector<NormalCone> cones;                       ///< per node
   std::vector<std::array<std::uint32_t, 2>> ranges;    ///< per node: slots [begin, end)
   std::size_t memoryBytes() const;
+
+  /// Per node RSS, fitted on the first call (from the mesh this hierarchy was built for). Thread-safe.
+  const std::vector<Rss>& rss(const std::vector<Eigen::Vector3d>& vertices,
+                              const std::vector<TriangleMesh::Triangle>& triangles) const;
+  bool rssFitted() const { return lazyRss->ready.load(std::memory_order_acquire); }
+
+ private:
+  struct LazyRss {
+    std::once_flag once;
+    std::atomic<bool> ready{false};
+    std::vector<Rss> volumes;
+  };
+  std::unique_ptr<LazyRss> lazyRss = std::make_unique<LazyRss>();  // behind a pointer: MeshBvh stays movable
 };
+
+/// Fits the RSS of every node of `bvh` (the work MeshBvh::rss does once).
+std::vector<Rss> fitNodeRss(const MeshBvh& bvh, const std::vector<Eigen::Vector3d>& vertices,
+                            const std::vector<TriangleMesh::Triangle>& triangles);
 
 MeshBvh buildMeshBvh(const std::vector<Eigen::Vector3d>& vertices,
                      const std::vector<TriangleMesh::Triangle>& triangles,

@@ -28,7 +28,22 @@ struct PosedModel {
 struct QueryContext {
   double tolerance;   ///< absolute, > 0 after defaulting (0 from the user becomes a rounding-level value)
   int maxIterations;
+  /// Set by searches that only need to know whether the solids' interiors are disjoint (the penetration
+  /// search tests translated copies): a routine may then stop as soon as it has proved an overlap, returning
+  /// upperBound <= 0 and an unknown (-inf) lowerBound, instead of measuring the penetration.
+  bool overlapVerdictOnly = false;
 };
+
+/// What a routine returns under overlapVerdictOnly once it has proved the interiors meet.
+inline DistanceResult overlapVerdict() {
+  DistanceResult r;
+  r.distance = 0;
+  r.upperBound = 0;
+  r.lowerBound = -std::numeric_limits<double>::infinity();
+  r.status = Status::Bounded;
+  r.method = "overlap-verdict";
+  return r;
+}
 
 using PairFn = DistanceResult (*)(const PosedModel& a, const PosedModel& b, const QueryContext& ctx);
 

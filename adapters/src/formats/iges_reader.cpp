@@ -1,0 +1,304 @@
+// IGES → NurbsModel: every rational B-spline surface (entity 128) of the file, each moved by its
+// transformation matrix (entity 124, chained ones applied in turn) when its directory entry points to one.
+//
+// Accepted: the fixed 80-column ASCII form. Column 73 says the section (S start, G global, D directory,
+// P parameter, T terminate); lines of other sections are ignored where they are not needed. The global
+// section's first two fields set the parameter and record delimiters ("1H," style Hollerith or empty for the
+// defaults ',' and ';'). A directory entry is two lines of 8-column fields; its field 2 points to the entity's
+// first P line (by sequence number), field 7 to a transformation matrix, and line 2 field 4 gives the P line
+// count. Parameter data is columns 1–64 of those P lines; strings are Hollerith (nHtext), numbers may use D
+// exponents. Entity 128: K1 K2 M1 M2 PROP1..5, knots, weights, control points, parameter range.
+// Not modelled: trimming (entities 142/143/144/510 are ignored, so a trimmed face is read untrimmed — the file's
+// surfaces must be the model), and a parameter range narrower than the knot domain (an error).
+// The model is a solid when its surfaces close up (NurbsModel's closedness test), an open surface otherwise.
+// Every problem is an InputError "<path>:<line>: ..." (physical line of the file, from 1).
+#include "formats/readers.h"
+#include "formats/text_scanner.h"
+
+#include "unidist/adapters/spec.h"
+#include "unidist/nurbs.h"
+
+#include <cmath>
+#include <map>
+#include <set>
+
+namespace unidist::formats {
+namespace {
+
+struct Token {
+  std::string text;
+  std::size_t line;  // physical line of its first character
+};
+
+struct DirectoryEntry {
+  int type = 0, parameterStart = 0, transform = 0, parameterLines = 0;
+  std::size_t line = 0;
+};
+
+class IgesParser {
+ public:
+  explicit IgesParser(std::string path) : path_(std::move(path)) {}
+
+  std::shared_ptr<const Model> read() {
+    const std::string text = readWholeFile(path_);
+    splitSections(text);
+    if (directory_.empty()) failAt(lastLine_, "no directory section (D lines): not an IGES file");
+    readGlobal();
+    readDirectory();
+    std::vector<NurbsSurface> surfaces;
+    std::size_t firstLine = 0;
+    for (const auto& [de, entry] : entries_) {
+      if (entry.type != 128) continue;
+      if (!firstLine) firstLine = entry.line;
+      surfaces.push_back(surface(de, entry));
+    }
+    if (surfaces.empty()) failAt(lastLine_, "no rational B-spline surface (entity 128) in the file");
+    try {
+      try {
+        return std::make_shared<const NurbsModel>(surfaces, true);
+      } catch (const InputError& e) {
+        if (std::string(e.what()).find("not closed") == std::string::npos) throw;
+        return std::make_shared<const NurbsModel>(std::move(surfaces), false);
+      }
+    } catch (const InputError& e) {
+      throw InputError(path_ + ":" + std::to_string(firstLine) + ": " + e.what());
+    }
+  }
+
+ private:
+  [[noreturn]] void failAt(std::size_t line, const std::string& what) const { failAtLine(path_, line, what); }
+
+  void splitSections(const std::string& text) {
+    LineScanner s(path_, text);
+    while (s.nextLine()) {
+      std::string line(s.line());
+      lastLine_ = s.lineNumber();
+      if (line.find_first_not_of(" \t") == std::string::npos) continue;
+      if (line.size() < 73) failAt(s.lineNumber(), "line shorter than 73 columns (IGES lines are 80 columns, section letter in column 73)");
+      const char section = line[72];
+      const std::string data = line.substr(0, 72);
+      switch (section) {
+        case 'S': break;
+        case 'G': global_.push_back({data, s.lineNumber()}); break;
+        case 'D': directory_.push_back({data, s.lineNumber()}); break;
+        case 'P': parameter_.push_back({data.substr(0, 64), s.lineNumber()}); break;
+        case 'T': break;
+        case 'F': case 'C': failAt(s.lineNumber(), "compressed or binary IGES is not supported (ASCII fixed format only)");
+        default: failAt(s.lineNumber(), std::string("unknown section letter '") + section + "' in column 73");
+      }
+    }
+  }
+
+  /// Tokens of a delimited stream: fields separated by delim_, ended by record_; Hollerith strings kept whole.
+  std::vector<Token> tokens(const std::vector<Token>& lines, bool stopAtRecord, std::size_t& firstLine) const {
+    std::string all;
+    std::vector<std::size_t> lineOf;  // physical line of every character
+    for (const Token& l : lines) {
+      all += l.text;
+      lineOf.insert(lineOf.end(), l.text.size(), l.line);
+    }
+    firstLine = lines.empty() ? lastLine_ : lines.front().line;
+    std::vector<Token> out;
+    std::size_t i = 0;
+    std::string current;
+    std::size_t currentLine = firstLine;
+    bool inField = false;
+    while (i < all.size()) {
+      const char c = all[i];
+      if (c == delim_ || c == record_) {
+        out.push_back({trim(current), inField ? currentLine : lineOf[i]});
+        current.clear();
+        inField = false;
+        ++i;
+        if (c == record_ && stopAtRecord) return out;
+        continue;
+      }
+      if (!inField) {
+        currentLine = lineOf[i];
+        inField = c != ' ';
+      }
+      // A Hollerith string: digits, 'H', then exactly that many characters (delimiters included).
+      if (c >= '0' && c <= '9' && trim(current).empty()) {
+        std::size_t j = i;
+        while (j < all.size() && all[j] >= '0' && all[j] <= '9') ++j;
+        if (j < all.size() && (all[j] == 'H' || all[j] == 'h')) {
+          if (j - i > 6) failAt(lineOf[i], "Hollerith string length is not a sensible count");
+          const std::size_t n = std::stoul(all.substr(i, j - i));
+          if (j + 1 + n > all.size()) failAt(lineOf[i], "Hollerith string longer than the data that follows");
+          current = all.substr(i, j + 1 + n - i);
+          i = j + 1 + n;
+          inField = true;
+          continue;
+        }
+      }
+      current += c;
+      ++i;
+    }
+    if (stopAtRecord) failAt(lineOf.empty() ? firstLine : lineOf.back(), std::string("missing record delimiter '") + record_ + "'");
+    if (!trim(current).empty()) out.push_back({trim(current), currentLine});
+    return out;
+  }
+
+  static std::string trim(const std::string& s) {
+    const auto a = s.find_first_not_of(' '), b = s.find_last_not_of(' ');
+    return a == std::string::npos ? "" : s.substr(a, b - a + 1);
+  }
+
+  void readGlobal() {
+    // The first two fields define the delimiters themselves, so they are read by hand.
+    std::string all;
+    for (const Token& l : global_) all += l.text;
+    const std::size_t line = global_.empty() ? lastLine_ : global_.front().line;
+    std::size_t i = 0;
+    auto delimiterField = [&](char fallback, char separator) -> char {
+      while (i < all.size() && all[i] == ' ') ++i;
+      if (i < all.size() && all[i] == separator) return fallback;  // empty field: the default
+      if (i + 2 < all.size() && all[i] == '1' && (all[i + 1] == 'H' || all[i + 1] == 'h')) {
+        const char d = all[i + 2];
+        i += 3;
+        return d;
+      }
+      failAt(line, "global section: a delimiter must be given as 1Hx or left empty");
+    };
+    if (all.empty()) return;  // defaults
+    delim_ = delimiterField(',', ',');
+    if (i >= all.size() || all[i] != delim_) failAt(line, "global section: parameter delimiter not followed by itself");
+    ++i;
+    record_ = delimiterField(';', delim_);
+    if (delim_ == record_) failAt(line, "global section: parameter and record delimiters are the same");
+  }
+
+  int integerField(const std::string& line, int field, std::size_t where, const char* name) const {
+    const std::string f = trim(line.substr(static_cast<std::size_t>(field) * 8, 8));
+    if (f.empty()) return 0;
+    long long v = 0;
+    if (!parseInteger(f, v) || v < -1000000000LL || v > 1000000000LL)
+      failAt(where, std::string("directory entry field ") + name + " is not an integer: " + quoted(f));
+    return static_cast<int>(v);
+  }
+
+  void readDirectory() {
+    if (directory_.size() % 2 != 0) failAt(directory_.back().line, "odd number of directory lines (entries are two lines)");
+    for (std::size_t k = 0; k < directory_.size(); k += 2) {
+      const Token& a = directory_[k];
+      const Token& b = directory_[k + 1];
+      DirectoryEntry e;
+      e.line = a.line;
+      e.type = integerField(a.text, 0, a.line, "entity type");
+      if (integerField(b.text, 0, b.line, "entity type") != e.type)
+        failAt(b.line, "the two lines of a directory entry name different entity types");
+      e.parameterStart = integerField(a.text, 1, a.line, "parameter data");
+      e.transform = integerField(a.text, 6, a.line, "transformation matrix");
+      e.parameterLines = integerField(b.text, 3, b.line, "parameter line count");
+      entries_[static_cast<int>(k + 1)] = e;  // DE pointer = sequence number of the entry's first line
+    }
+  }
+
+  /// The parameter tokens of an entity (its type first), from its P lines.
+  std::vector<Token> parameters(const DirectoryEntry& e) const {
+    if (e.parameterStart < 1 || static_cast<std::size_t>(e.parameterStart) > parameter_.size())
+      failAt(e.line, "parameter data pointer " + std::to_string(e.parameterStart) + " is outside the P section (" +
+                         std::to_string(parameter_.size()) + " lines)");
+    const std::size_t first = static_cast<std::size_t>(e.parameterStart - 1);
+    const std::size_t count = e.parameterLines > 0 ? static_cast<std::size_t>(e.parameterLines) : parameter_.size() - first;
+    if (first + count > parameter_.size()) failAt(e.line, "parameter line count runs past the end of the P section");
+    std::size_t firstLine = 0;
+    std::vector<Token> t = tokens({parameter_.begin() + static_cast<long>(first), parameter_.begin() + static_cast<long>(first + count)}, true, firstLine);
+    long long type = 0;
+    if (t.empty() || !parseInteger(t.front().text, type) || type != e.type)
+      failAt(firstLine, "parameter data does not start with the entity type " + std::to_string(e.type));
+    return t;
+  }
+
+  double number(const Token& t, const std::string& what) const {
+    std::string s = t.text;
+    for (char& c : s)
+      if (c == 'D' || c == 'd') c = 'e';
+    if (!s.empty() && s.back() == '.') s += '0';  // IGES writes "1." for 1.0
+    try {
+      return parseNumber(s, what);
+    } catch (const InputError& e) {
+      failAt(t.line, e.what());
+    }
+  }
+
+  int integer(const Token& t, const std::string& what) const {
+    long long v = 0;
+    if (!parseInteger(t.text, v) || v < 0 || v > 100000000) failAt(t.line, what + ": " + quoted(t.text) + " is not a valid count");
+    return static_cast<int>(v);
+  }
+
+  /// x -> R x + T of the entity-124 chain starting at directory pointer de.
+  Eigen::Isometry3d transform(int de, std::size_t line) const {
+    Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+    std::set<int> seen;
+    while (de != 0) {
+      if (!seen.insert(de).second) failAt(line, "transformation matrices point to each other in a cycle");
+      const auto it = entries_.find(de);
+      if (it == entries_.end() || it->second.type != 124)
+        failAt(line, "transformation pointer " + std::to_string(de) + " does not name an entity 124");
+      const std::vector<Token> t = parameters(it->second);
+      if (t.size() < 13) failAt(t.back().line, "entity 124 needs 12 numbers");
+      Eigen::Matrix4d M = Eigen::Matrix4d::Identity();
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 4; ++c) M(r, c) = number(t[static_cast<std::size_t>(1 + 4 * r + c)], "entity 124 value");
+      Eigen::Isometry3d step;
+      step.matrix() = M;
+      X = step * X;  // a matrix's own transformation pointer applies after it
+      de = it->second.transform;
+    }
+    return X;
+  }
+
+  NurbsSurface surface(int de, const DirectoryEntry& e) const {
+    const std::vector<Token> t = parameters(e);
+    std::size_t at = 1;
+    auto next = [&](const char* what) -> const Token& {
+      if (at >= t.size()) failAt(t.back().line, std::string("entity 128 ends before ") + what);
+      return t[at++];
+    };
+    const int k1 = integer(next("K1"), "K1"), k2 = integer(next("K2"), "K2");
+    const int m1 = integer(next("M1"), "M1"), m2 = integer(next("M2"), "M2");
+    for (int k = 0; k < 5; ++k) next("PROP1..5");
+    const std::size_t line = t.front().line;
+    if (m1 < 1 || m2 < 1) failAt(line, "degree below 1");
+    const int nu = k1 + 1, nv = k2 + 1;
+    std::vector<double> knotsU, knotsV;
+    for (int i = 0; i < nu + m1 + 1; ++i) knotsU.push_back(number(next("the u knots"), "knot"));
+    for (int i = 0; i < nv + m2 + 1; ++i) knotsV.push_back(number(next("the v knots"), "knot"));
+    std::vector<double> weights;
+    for (int i = 0; i < nu * nv; ++i) weights.push_back(number(next("the weights"), "weight"));
+    const Eigen::Isometry3d X = transform(e.transform, e.line);
+    std::vector<std::vector<Eigen::Vector4d>> net(static_cast<std::size_t>(nu), std::vector<Eigen::Vector4d>(static_cast<std::size_t>(nv)));
+    for (int j = 0; j < nv; ++j)  // IGES order: the first index (u) varies fastest
+      for (int i = 0; i < nu; ++i) {
+        Eigen::Vector3d p;
+        for (int c = 0; c < 3; ++c) p[c] = number(next("the control points"), "control point coordinate");
+        p = X * p;
+        net[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)] << p, weights[static_cast<std::size_t>(j * nu + i)];
+      }
+    double range[4];
+    for (double& r : range) r = number(next("the parameter range"), "parameter range");
+    try {
+      NurbsSurface s(m1, m2, std::move(knotsU), std::move(knotsV), std::move(net));
+      const double su = 1e-9 * (std::abs(s.uMax()) + std::abs(s.uMin()) + 1), sv = 1e-9 * (std::abs(s.vMax()) + std::abs(s.vMin()) + 1);
+      if (range[0] > s.uMin() + su || range[1] < s.uMax() - su || range[2] > s.vMin() + sv || range[3] < s.vMax() - sv)
+        throw InputError("parameter range narrower than the knot domain is not supported");
+      return s;
+    } catch (const InputError& err) {
+      failAt(line, "entity 128 (directory entry " + std::to_string(de) + "): " + err.what());
+    }
+  }
+
+  std::string path_;
+  std::vector<Token> global_, directory_, parameter_;
+  std::map<int, DirectoryEntry> entries_;
+  char delim_ = ',', record_ = ';';
+  std::size_t lastLine_ = 1;
+};
+
+}  // namespace
+
+std::shared_ptr<const Model> readIges(const std::string& path) { return IgesParser(path).read(); }
+
+}  // namespace unidist::formats

@@ -1,0 +1,147 @@
+// The public contacts() entry: checks the input, turns boxes into exact meshes (so that a box gets corner
+// contacts), picks the routine for the pair family (see unidist/contacts.h) and merges and reduces the result.
+#include "unidist/contacts.h"
+
+#include "contacts/point_contacts.h"
+#include "contacts/reduce.h"
+#include "contacts/snch.h"
+#include "unidist/distance.h"
+#include "unidist/primitives.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <memory>
+
+namespace unidist {
+namespace {
+
+/// The box as 12 outward triangles (the same solid: its point queries agree with the primitive's).
+std::unique_ptr<TriangleMesh> boxMesh(const Box& box) {
+  const Eigen::Vector3d h = box.halfExtents();
+  std::vector<Eigen::Vector3d> v;
+  for (int i = 0; i < 8; ++i) v.emplace_back(i & 1 ? h.x() : -h.x(), i & 2 ? h.y() : -h.y(), i & 4 ? h.z() : -h.z());
+  std::vector<TriangleMesh::Triangle> t = {{0, 2, 3}, {0, 3, 1}, {4, 5, 7}, {4, 7, 6}, {0, 1, 5}, {0, 5, 4},
+                                           {2, 6, 7}, {2, 7, 3}, {0, 4, 6}, {0, 6, 2}, {1, 3, 7}, {1, 7, 5}};
+  return std::make_unique<TriangleMesh>(std::move(v), std::move(t));
+}
+
+/// The model the contact routines work on: the model itself, or a box's mesh.
+struct Working {
+  const Model* model;
+  std::unique_ptr<TriangleMesh> owned;
+  const TriangleMesh* mesh() const { return dynamic_cast<const TriangleMesh*>(model); }
+};
+
+Working working(const Model& m) {
+  Working w{&m, nullptr};
+  if (const auto* box = dynamic_cast<const Box*>(&m)) {
+    w.owned = boxMesh(*box);
+    w.model = w.owned.get();
+  }
+  return w;
+}
+
+Contact fromDistance(const DistanceResult& r) {
+  Contact c;
+  c.pointA = r.pointA, c.pointB = r.pointB, c.normal = r.normal, c.distance = r.distance;
+  return c;
+}
+
+void toWorld(std::vector<Contact>& cs, const Eigen::Isometry3d& X_WA) {
+  for (Contact& c : cs) {
+    c.pointA = X_WA * c.pointA;
+    c.pointB = X_WA * c.pointB;
+    c.normal = X_WA.linear() * c.normal;
+  }
+}
+
+/// Mesh–mesh: the normal cone search for separation and touching, the locally deepest vertices for overlap,
+/// and the global answer when the meshes cross without a vertex inside the other.
+void meshMesh(const TriangleMesh& a, const Eigen::Isometry3d& X_WA, const TriangleMesh& b,
+              const Eigen::Isometry3d& X_WB, double margin, double tol, double dirEps, const Model& origA,
+              const Model& origB, std::vector<Contact>& out) {
+  const contact::MeshFeatures fa(a), fb(b);
+  const Eigen::Isometry3d X_AB = X_WA.inverse() * X_WB;
+  contact::SnchResult r = contact::snchSearch(a, fa, b, fb, X_AB, margin, tol, dirEps);
+  toWorld(r.contacts, X_WA);
+  out.insert(out.end(), r.contacts.begin(), r.contacts.end());
+  bool crossing = false;
+  for (const auto& leaves : r.overlapping)
+    if ((crossing = contact::leavesIntersect(a, b, X_AB, leaves[0], leaves[1]))) break;
+  if (!crossing) {
+    // Surfaces apart (or touching) but one solid wholly inside the other: no local search sees it (a vertex's
+    // depth is not the way out); the global depth does.
+    if (!out.empty()) return;
+    const bool contained = (b.isSolid() && b.inside(X_AB.inverse() * a.vertices()[0])) ||
+                           (a.isSolid() && a.inside(X_AB * b.vertices()[0]));
+    if (!contained) return;
+    const DistanceResult d = distance(origA, X_WA, origB, X_WB);
+    if (d.distance < -tol) out.push_back(fromDistance(d));
+    return;
+  }
+  // Crossing surfaces: the locally deepest vertices of each inside the other; when there are none (an edge
+  // through an edge), the global penetration.
+  const std::size_t before = out.size();
+  contact::meshVertexContacts(a, fa, X_WA, b, X_WB, margin, tol, true, true, out);
+  contact::meshVertexContacts(b, fb, X_WB, a, X_WA, margin, tol, false, true, out);
+  if (out.size() > before) return;
+  const DistanceResult d = distance(origA, X_WA, origB, X_WB);
+  if (d.distance < -tol) out.push_back(fromDistance(d));
+}
+
+void pointQueries(const Working& w, const Eigen::Isometry3d& X_WM, const Model& other, const Eigen::Isometry3d& X_WO,
+                  double margin, double tol, bool isA, std::vector<Contact>& out) {
+  if (const TriangleMesh* m = w.mesh()) {
+    const contact::MeshFeatures f(*m);
+    contact::meshVertexContacts(*m, f, X_WM, other, X_WO, margin, tol, isA, false, out);
+  } else if (const auto* c = dynamic_cast<const PointCloud*>(w.model)) {
+    contact::cloudPointContacts(*c, X_WM, other, X_WO, margin, tol, isA, out);
+  }
+}
+
+}  // namespace
+
+std::vector<Contact> contacts(const Model& a, const Eigen::Isometry3d& X_WA, const Model& b,
+                              const Eigen::Isometry3d& X_WB, const ContactOptions& options) {
+  if (!std::isfinite(options.margin) || options.margin < 0)
+    throw InputError("contacts: margin must be finite and >= 0");
+  if (options.maxContacts < 0) throw InputError("contacts: maxContacts must be >= 0");
+  if (std::isnan(options.tolerance) || options.tolerance == std::numeric_limits<double>::infinity())
+    throw InputError("contacts: tolerance must be finite");
+  if (!X_WA.matrix().allFinite() || !X_WB.matrix().allFinite()) throw InputError("contacts: non-finite pose");
+  if (a.type() == ModelType::Plane && b.type() == ModelType::Plane)
+    throw InputError("plane-plane pairs are not supported");
+
+  const double defaultTol = defaultTolerance(a, X_WA, b, X_WB);
+  // Never below 1e-12 × the size: rounding alone would otherwise turn "touching" into "apart".
+  const double tol = options.tolerance >= 0 ? std::max(options.tolerance, 1e-3 * defaultTol) : defaultTol;
+  const double dirEps = defaultTol;  // 1e-9 × size: below it the two points' direction is mostly rounding
+  const double margin = options.margin;
+  const Working wa = working(a), wb = working(b);
+
+  std::vector<Contact> out;
+  if (wa.mesh() && wb.mesh()) {
+    meshMesh(*wa.mesh(), X_WA, *wb.mesh(), X_WB, margin, tol, dirEps, a, b, out);
+  } else {
+    pointQueries(wa, X_WA, b, X_WB, margin, tol, true, out);
+    pointQueries(wb, X_WB, a, X_WA, margin, tol, false, out);
+    const DistanceResult d = distance(a, X_WA, b, X_WB);
+    if (d.distance <= margin + tol) {
+      Contact c = fromDistance(d);
+      c.featureA = a.closestPoint(X_WA.inverse() * c.pointA).feature;
+      c.featureB = b.closestPoint(X_WB.inverse() * c.pointB).feature;
+      out.push_back(c);
+    }
+  }
+  // A box's contacts name the primitive's features, not its stand-in mesh's triangles.
+  for (Contact& c : out) {
+    if (wa.owned) c.featureA = a.closestPoint(X_WA.inverse() * c.pointA).feature;
+    if (wb.owned) c.featureB = b.closestPoint(X_WB.inverse() * c.pointB).feature;
+  }
+  contact::mergeDuplicates(out, 16 * std::max(tol, dirEps));
+  if (options.maxContacts > 0) contact::reduceContacts(out, options.maxContacts);
+  return out;
+}
+
+}  // namespace unidist

@@ -1,0 +1,342 @@
+#include "generic/translation_depth.h"
+
+#include "dispatch.h"
+#include "generic/direction_cones.h"
+#include "generic/surface_search.h"
+#include "pairs/analytic.h"
+
+#include <algorithm>
+#include <cmath>
+#include <queue>
+#include <vector>
+
+namespace unidist::detail {
+
+namespace {
+
+constexpr int kWitnessSteps = 4;   // balancing steps per witness (each: one point query per model)
+constexpr int kMaxMarchSteps = 200;
+constexpr int kPolishRounds = 8;
+constexpr int kMaxConeLevel = 40;
+constexpr int kTraceEvery = 4;  // after the first two levels, every this many cones popped try their axis
+constexpr int kSeparationTestCost = 20;  // a pair separation test against a point query (measured: 10–50×)
+// An exit farther than this fraction of its length beyond the proved overlap suggests sliding contact.
+constexpr double kSlidingSuspicion = 0.05;
+constexpr int kLiftedSearchSteps = 10;
+constexpr int kSeedEvaluations = 4000;  // per surface, for seedOverlap
+
+PosedModel movedBy(const PosedModel& b, const Eigen::Vector3d& t) {
+  return {b.model, Eigen::Isometry3d(Eigen::Translation3d(t)) * b.X_WM};
+}
+
+/// A proved separating translation of B, with the contact it leaves.
+struct Escape {
+  double length = std::numeric_limits<double>::infinity();
+  Eigen::Vector3d direction = Eigen::Vector3d::UnitZ();
+  Eigen::Vector3d pointA = Eigen::Vector3d::Zero();  // on A, at the contact after the move
+  Eigen::Vector3d contactNormal = Eigen::Vector3d::UnitZ();  // A toward the moved B there
+  bool hasContact = false;
+};
+
+class DepthSearch {
+ public:
+  DepthSearch(const PosedModel& a, const PosedModel& b, const QueryContext& ctx) : a_(a), b_(b), ctx_(ctx) {
+    verdict_ = ctx;
+    verdict_.overlapVerdictOnly = true;
+    verdict_.tolerance = ctx.tolerance / 16;  // so a gap of a quarter tolerance can still be proved
+  }
+
+  int queries() const { return queries_; }
+  /// Work done, in point queries; a separation test is counted as kSeparationTestCost of them.
+  int cost() const { return queries_ + kSeparationTestCost * separationTests_; }
+
+  /// The overlap witness at translation t: a point x (improved in place) that lies in A at depth dA and in
+  /// B moved by t at depth dB. x in A with dB > 0 proves every translation within dB of t overlaps (x stays
+  /// inside the moved B); x in the moved B with dA > 0 proves the same within dA (that point of B stays
+  /// inside A). The value is the larger radius so proved; <= 0 proves nothing.
+  double witness(const Eigen::Vector3d& t, Eigen::Vector3d& x) {
+    double best = -std::numeric_limits<double>::infinity();
+    Eigen::Vector3d bestX = x;
+    for (int k = 0; k < kWitnessSteps; ++k) {
+      const SurfacePoint pa = a_.closestWorld(x), pb = b_.closestWorld(x - t);
+      queries_ += 2;
+      const double dA = -pa.signedDistance, dB = -pb.signedDistance;
+      const double none = -std::numeric_limits<double>::infinity();
+      const double value = std::max(dA >= 0 ? dB : none, dB >= 0 ? dA : none);
+      if (value > best) {
+        best = value;
+        bestX = x;
+      }
+      if (dA >= 0 && dB >= 0) {
+        // In both: stay inside the deeper solid (a move no longer than its depth) and go deeper into the other.
+        x -= dA >= dB ? Eigen::Vector3d(pb.normal * dA) : Eigen::Vector3d(pa.normal * dB);
+        continue;
+      }
+      // Outside one of them: move along the inward normal of the shallower solid by half the difference (its
+      // depth grows by about that, the other's shrinks by at most that: both are 1-Lipschitz).
+      const double half = 0.5 * std::abs(dA - dB);
+      if (!(half > 0.25 * ctx_.tolerance)) break;
+      x -= (dA < dB ? pa.normal : pb.normal) * half;
+    }
+    x = bestX;
+    return best;
+  }
+
+  /// Proves B moved by t interior-disjoint from A (true), with the separation answer in `out`.
+  bool separatedAt(const Eigen::Vector3d& t, DistanceResult& out) {
+    out = dispatchPair(a_, movedBy(b_, t), verdict_);
+    ++separationTests_;
+    return out.lowerBound >= 0;
+  }
+
+  /// March along `axis` from s0 (every ray of the cone of half-angle alpha is proved to overlap up to s0):
+  /// returns the distance up to which every ray of the cone is proved to stay in the overlap set.
+  double march(const Eigen::Vector3d& axis, double alpha, double s0, Eigen::Vector3d& x, double cap) {
+    // A ray r·e of the cone at r in [s, s + ds] lies within 2 r sin(α/2) + ds of s·axis.
+    const double spread = 2 * std::sin(0.5 * alpha);
+    double s = s0;
+    for (int step = 0; step < kMaxMarchSteps && s < cap; ++step) {
+      const double w = witness(s * axis, x);
+      const double ds = (w - spread * s) / (1 + spread);
+      // A cone stops once its spread takes half of the witness (its quarters go on from there with half the
+      // spread); a ray goes on to the tolerance.
+      if (!(ds > 0.125 * ctx_.tolerance) || spread * s > 0.5 * w) break;
+      // Shrink by a relative hair so the covered ball is strictly inside the witnessed one.
+      s += ds * (1 - 1e-12);
+    }
+    return std::min(s, cap);
+  }
+
+  /// A proved escape t = s·e + push for the smallest s found, searching upward from `provedInside` (the ray
+  /// overlaps up to there). `push` (tiny or zero) lifts B off a face it merely touches: the translated pair is
+  /// then proved apart instead of touching, which a separation test cannot tell from crossing.
+  Escape exitAlong(const Eigen::Vector3d& e, double provedInside, const Eigen::Vector3d& push, int maxSteps) {
+    Escape esc;
+    // A supporting-plane gap along e bounds the exit: B moved that far lies beyond A's support plane.
+    const double beyond = std::max(0.0, -supportGapLowerBound(a_, b_, e));
+    double lo = std::min(provedInside, beyond), hi = beyond * (1 + 1e-12) + ctx_.tolerance;
+    DistanceResult atHi, probe;
+    bool haveHi = false;
+    // Exponential search above the proved part: the exit is usually within a few tolerances of it.
+    int steps = 0;
+    for (double step = 0.25 * ctx_.tolerance; lo + step < hi && steps < maxSteps; step *= 4, ++steps) {
+      if (separatedAt((lo + step) * e + push, probe)) {
+        hi = lo + step;
+        atHi = probe;
+        haveHi = true;
+        break;
+      }
+      lo += step;
+    }
+    if (!haveHi && (steps >= maxSteps || !separatedAt(hi * e + push, atHi))) return esc;
+    while (hi - lo > 0.25 * ctx_.tolerance) {
+      const double mid = 0.5 * (lo + hi);
+      if (separatedAt(mid * e + push, probe)) {
+        hi = mid;
+        atHi = probe;
+      } else {
+        lo = mid;
+      }
+    }
+    const Eigen::Vector3d t = hi * e + push;
+    esc.length = t.norm();
+    esc.direction = t / esc.length;
+    esc.pointA = atHi.pointA;
+    esc.contactNormal = atHi.normal;
+    esc.hasContact = true;
+    return esc;
+  }
+
+  /// The exit along e; when it lies well beyond the part of the ray proved to overlap, B may be sliding along
+  /// a face it touches, so the exit is tried again with B lifted a quarter tolerance off each candidate face
+  /// (the contact normals seen so far, the axes of both models).
+  Escape exitAlong(const Eigen::Vector3d& e, double provedInside) {
+    Escape best = exitAlong(e, provedInside, Eigen::Vector3d::Zero(), std::numeric_limits<int>::max());
+    if (!(best.length - provedInside > kSlidingSuspicion * best.length + ctx_.tolerance)) return best;
+    std::vector<Eigen::Vector3d> lifts;
+    for (const Escape& p : planes_) lifts.push_back(p.contactNormal);
+    for (int i = 0; i < 3; ++i)
+      for (double sign : {1.0, -1.0}) {
+        lifts.push_back(sign * a_.X_WM.linear().col(i));
+        lifts.push_back(sign * b_.X_WM.linear().col(i));
+      }
+    for (const Eigen::Vector3d& u : lifts) {
+      if (std::abs(u.dot(e)) > 0.99) continue;  // along the ray: no lift off a face the ray slides on
+      const Escape lifted = exitAlong(e, provedInside, 0.25 * ctx_.tolerance * u, kLiftedSearchSteps);
+      if (lifted.length < best.length) best = lifted;
+    }
+    return best;
+  }
+
+  /// Exit along e, then re-aim along the contact normal found there while that shortens the escape.
+  Escape polishedExit(const Eigen::Vector3d& e0, Eigen::Vector3d x) {
+    Escape best;
+    Eigen::Vector3d e = e0;
+    for (int round = 0; round < kPolishRounds; ++round) {
+      const double inside = march(e, 0, 0, x, best.length);
+      const Escape esc = exitAlong(e, inside);
+      if (!(esc.length < best.length - 0.25 * ctx_.tolerance)) {
+        if (esc.length < best.length) best = esc;
+        break;
+      }
+      best = esc;
+      const Escape crease = creaseExit(esc);
+      if (crease.length < best.length) best = crease;
+      // The boundary of the overlap set at the escape has the contact normal as its normal: its tangent plane's
+      // closest point to the origin lies along that normal.
+      const Eigen::Vector3d n = esc.contactNormal;
+      if (!(n.dot(esc.direction) > 0) || !n.allFinite() || (n - e).norm() < 1e-15) break;
+      e = n.normalized();
+    }
+    return best;
+  }
+
+  int separationTests() const { return separationTests_; }
+
+  /// Where two of the escapes' contact planes meet, the overlap set has a crease (a concave corner of its
+  /// boundary, e.g. a cube in a notch that must clear two walls): the closest point of the crease line to the
+  /// origin is a direction no polish along single normals reaches. Tries the newest plane with each earlier one.
+  Escape creaseExit(const Escape& newest) {
+    Escape best;
+    if (!newest.hasContact) return best;
+    const Eigen::Vector3d n1 = newest.contactNormal;
+    const double c1 = newest.length * newest.direction.dot(n1);
+    for (const Escape& other : planes_) {
+      const Eigen::Vector3d n2 = other.contactNormal;
+      const double c2 = other.length * other.direction.dot(n2);
+      const double g = n1.dot(n2), det = 1 - g * g;
+      if (!(det > 1e-12)) continue;
+      const Eigen::Vector3d t = ((c1 - g * c2) * n1 + (c2 - g * c1) * n2) / det;
+      const double len = t.norm();
+      if (!(len > 0) || len >= best.length || len >= newest.length) continue;
+      Eigen::Vector3d x = newest.pointA;
+      const Escape esc = exitAlong(t / len, march(t / len, 0, 0, x, newest.length));
+      if (esc.length < best.length) best = esc;
+    }
+    if (planes_.size() < kMaxPlanes) planes_.push_back(newest);
+    return best;
+  }
+
+ private:
+  const PosedModel& a_;
+  const PosedModel& b_;
+  const QueryContext& ctx_;
+  QueryContext verdict_;
+  int queries_ = 0;
+  int separationTests_ = 0;
+  static constexpr std::size_t kMaxPlanes = 16;
+  std::vector<Escape> planes_;  // escapes whose contact planes the crease candidates combine
+};
+
+struct OpenCone {
+  DirectionCone cone;
+  double provedExit;  // every ray of the cone overlaps up to here
+  Eigen::Vector3d witness;
+  bool operator>(const OpenCone& o) const { return provedExit > o.provedExit; }
+};
+
+}  // namespace
+
+DistanceResult translationalDepth(const PosedModel& a, const PosedModel& b, const QueryContext& ctx,
+                                  const OverlapSeed& seed) {
+  const double tol = ctx.tolerance;
+  DepthSearch search(a, b, ctx);
+  const long budget = 3L * std::max(1000, ctx.maxIterations);  // in point queries (cost())
+
+  Escape best;
+  best.length = seed.knownEscape;
+  best.direction = seed.knownEscapeDirection;
+  auto consider = [&](const Escape& e) {
+    // An escape with its contact points beats a supporting-plane escape (no points) within a quarter tolerance.
+    if (e.length < best.length || (!best.hasContact && e.hasContact && e.length <= best.length + 0.25 * tol)) best = e;
+  };
+  consider(search.polishedExit(seed.direction, seed.deepPoint));
+
+  double provedDepth = std::max(0.0, seed.provedDepth);
+  std::priority_queue<OpenCone, std::vector<OpenCone>, std::greater<OpenCone>> open;
+  bool searched = false;  // whether the cones cover every direction (else only provedDepth is known)
+  auto lowerBound = [&] {
+    if (!searched) return provedDepth;
+    return std::max(provedDepth, open.empty() ? best.length : open.top().provedExit);
+  };
+  auto push = [&](const DirectionCone& c, double from, Eigen::Vector3d x) {
+    const double reached = search.march(c.axis, c.halfAngle, from, x, best.length);
+    open.push({c, reached, x});
+  };
+  if (best.length - provedDepth > tol) {
+    for (const DirectionCone& c : cubeMapCones(2)) push(c, 0, seed.deepPoint);
+    searched = true;
+  }
+  int popped = 0;
+  while (!open.empty() && best.length - lowerBound() > tol && search.cost() < budget) {
+    const OpenCone top = open.top();
+    open.pop();
+    ++popped;
+    // Try the cone's axis for a better escape now and then (each try costs tens of separation tests).
+    if (top.cone.level <= 1 || popped % kTraceEvery == 0) consider(search.polishedExit(top.cone.axis, top.witness));
+    if (top.cone.level >= kMaxConeLevel) {
+      open.push(top);  // as fine as directions go; keep its bound
+      break;
+    }
+    for (const DirectionCone& child : splitCone(top.cone)) push(child, top.provedExit, top.witness);
+  }
+  // Cones proved beyond the best escape never matter; everything left bounds the depth from below.
+  const double lower = std::min(lowerBound(), best.length);
+
+  DistanceResult r;
+  r.method = "translation-depth-bnb";
+  r.iterations = search.queries() + search.separationTests();
+  r.distance = -best.length;
+  r.normal = best.direction;
+  if (best.hasContact) {
+    r.pointA = best.pointA;
+    r.pointB = best.pointA - best.length * best.direction;
+  } else {
+    // Only a supporting-plane escape is known: B's support point, and where it lands on A's support plane.
+    r.pointB = b.supportWorld(-best.direction);
+    r.pointA = r.pointB + best.length * best.direction;
+  }
+  r.lowerBound = -best.length;
+  r.upperBound = -lower;
+  settleStatus(r, tol);
+  return r;
+}
+
+void addPlaneEscapes(const PosedModel& a, const PosedModel& b, OverlapSeed& seed) {
+  std::vector<Eigen::Vector3d> directions = {seed.direction};
+  for (int i = 0; i < 3; ++i) {
+    directions.push_back(Eigen::Vector3d::Unit(i));
+    directions.push_back(-Eigen::Vector3d::Unit(i));
+  }
+  for (const Eigen::Vector3d& u : directions) {
+    const double escape = std::max(0.0, -supportGapLowerBound(a, b, u));  // B moved this far is beyond A
+    if (escape < seed.knownEscape) {
+      seed.knownEscape = escape;
+      seed.knownEscapeDirection = u;
+    }
+  }
+}
+
+OverlapSeed seedOverlap(const PosedModel& a, const PosedModel& b, const QueryContext& ctx) {
+  OverlapSeed seed;
+  double deepest = std::numeric_limits<double>::infinity();
+  for (bool ofA : {true, false}) {
+    const PosedModel& surface = ofA ? a : b;
+    const PosedModel& field = ofA ? b : a;
+    const Eigen::Vector3d start = surface.supportWorld(field.toWorld(field.model.localBounds().center()) -
+                                                       surface.toWorld(surface.model.localBounds().center()));
+    const SurfaceMinimum m = minimizeFieldOverSurface(surface, field, fieldValue(field, start), start,
+                                                      0.5 * ctx.tolerance, kSeedEvaluations, kSeedEvaluations);
+    if (m.value < deepest) {
+      deepest = m.value;
+      const SurfacePoint onField = field.closestWorld(m.point);
+      seed.deepPoint = m.point;
+      seed.direction = ofA ? Eigen::Vector3d(-onField.normal) : onField.normal;  // the way B leaves
+    }
+  }
+  seed.provedDepth = std::max(0.0, -deepest);
+  addPlaneEscapes(a, b, seed);
+  return seed;
+}
+
+}  // namespace unidist::detail

@@ -1,0 +1,50 @@
+// Global translational penetration depth of two overlapping solids of any representation, with proved
+// bounds (algorithms.md §5.2, "certified bracket" and "ray version", done without a convex decomposition).
+// Internal.
+//
+// Work in translation space: U = {t : A and B moved by t have intersecting interiors}; the depth is the
+// distance from the origin to the boundary of U, i.e. min over directions e of the first exit of the ray t = s·e.
+//  * Upper bound: any t whose translated pair the pair's own routine proves interior-disjoint. Along a
+//    direction, an exponential search then bisection finds such a t near the ray's exit; it is polished by
+//    re-aiming along the contact normal found there (the boundary's normal in translation space), which is
+//    exact in one step where the boundary is a face and converges where it is curved.
+//  * Lower bound: an overlap witness. A point x inside A at depth dA and inside B moved by t at depth dB
+//    proves that every translation within min(dA, dB) of t still overlaps (both depths are 1-Lipschitz), so
+//    a ball of t-space lies in U. Marching along the axis of a cone of directions with these balls proves a
+//    first exit no smaller than the march reached for every ray of the cone. Cones are the cells of a cube
+//    map, refined best-first on the smallest proved exit. The deepest point of one surface inside the other
+//    solid (the search before this one) is a second proved lower bound.
+// The answer is certified when the bounds meet within the tolerance, bounded otherwise, within a budget of
+// witness evaluations derived from maxIterations.
+#pragma once
+
+#include "pairs/pair_query.h"
+
+namespace unidist::detail {
+
+/// What the caller already knows about the overlap.
+struct OverlapSeed {
+  double provedDepth = 0;  ///< a proved lower bound on the depth (e.g. the deepest surface point's depth), >= 0
+  Eigen::Vector3d deepPoint = Eigen::Vector3d::Zero();  ///< a world point inside both solids, or near both
+  Eigen::Vector3d direction = Eigen::Vector3d::UnitZ();  ///< a promising escape direction for B (unit)
+  double knownEscape = std::numeric_limits<double>::infinity();  ///< a proved escape distance (upper bound)
+  Eigen::Vector3d knownEscapeDirection = Eigen::Vector3d::UnitZ();
+};
+
+/// a and b are solids whose interiors are known to overlap. Returns the contract's answer: distance = −depth,
+/// normal = the direction B moves to separate, pointA on A and pointB on B with pointB − pointA = distance·normal.
+DistanceResult translationalDepth(const PosedModel& a, const PosedModel& b, const QueryContext& ctx,
+                                  const OverlapSeed& seed);
+
+}  // namespace unidist::detail
+
+namespace unidist::detail {
+
+/// A seed for translationalDepth from short searches of each surface against the other solid's field (the
+/// deepest points found), and supporting-plane escapes along the axes and the deepest point's normal.
+OverlapSeed seedOverlap(const PosedModel& a, const PosedModel& b, const QueryContext& ctx);
+
+/// Lowers seed.knownEscape by supporting-plane escapes along the axes and seed.direction.
+void addPlaneEscapes(const PosedModel& a, const PosedModel& b, OverlapSeed& seed);
+
+}  // namespace unidist::detail

@@ -1,0 +1,60 @@
+// The two objectives the patch search minimises: distance to a point (closestPoint) and −d·p (support). Internal.
+#pragma once
+
+#include "nurbs/patch_search.h"
+
+#include <algorithm>
+#include <limits>
+
+namespace unidist::nurbs {
+
+/// |S − q|; Newton works on ½|S − q|², whose Hessian is the first fundamental form minus ρ times the second.
+class PointObjective final : public Objective {
+ public:
+  PointObjective(const Eigen::Vector3d& q, double modelSize) : q_(q), floor_(0.02 * modelSize) {}
+  double value(const Eigen::Vector3d& p) const override { return (p - q_).norm(); }
+  double lowerBound(const PatchNode& n) const override {
+    return std::max(0.0, (q_ - n.ball.center).norm() - n.ball.radius);
+  }
+  Cone criticalDirections(const BoundingSphere& b) const override { return coneTowards(q_, b.center, b.radius); }
+  void derivatives(const SurfaceDerivatives& d, Eigen::Vector2d& g, Eigen::Matrix2d& H) const override {
+    const Eigen::Vector3d r = d.point - q_;
+    g << r.dot(d.du), r.dot(d.dv);
+    H << d.du.dot(d.du) + r.dot(d.duu), d.du.dot(d.dv) + r.dot(d.duv), d.du.dot(d.dv) + r.dot(d.duv),
+        d.dv.dot(d.dv) + r.dot(d.dvv);
+  }
+  // Near the surface the distance is convex over a small piece whatever q, so pieces of a fixed small size
+  // are polished too (otherwise a query on the surface would subdivide down to the tolerance).
+  double leafScale(const BoundingSphere& b) const override { return std::max((q_ - b.center).norm(), floor_); }
+
+ private:
+  Eigen::Vector3d q_;
+  double floor_;
+};
+
+/// −d·S: its minimiser is a support point in direction d.
+class SupportObjective final : public Objective {
+ public:
+  SupportObjective(const Eigen::Vector3d& d, double modelSize) : d_(d), size_(modelSize) {}
+  double value(const Eigen::Vector3d& p) const override { return -d_.dot(p); }
+  // The convex hull of the control points holds the subpatch, so max d·P over them bounds d·S; much tighter
+  // than the ball at a pole, where every cell along the collapsed edge touches the extreme point. Widened by
+  // the ball's rounding allowance.
+  double lowerBound(const PatchNode& n) const override {
+    double most = -std::numeric_limits<double>::infinity();
+    for (const Eigen::Vector4d& h : n.net.net) most = std::max(most, d_.dot(h.head<3>() / h[3]));
+    return -most - 256 * std::numeric_limits<double>::epsilon() * (n.ball.center.cwiseAbs().maxCoeff() + n.ball.radius);
+  }
+  Cone criticalDirections(const BoundingSphere&) const override { return Cone{d_.normalized(), 0.0, false}; }
+  void derivatives(const SurfaceDerivatives& s, Eigen::Vector2d& g, Eigen::Matrix2d& H) const override {
+    g << -d_.dot(s.du), -d_.dot(s.dv);
+    H << -d_.dot(s.duu), -d_.dot(s.duv), -d_.dot(s.duv), -d_.dot(s.dvv);
+  }
+  double leafScale(const BoundingSphere&) const override { return size_; }
+
+ private:
+  Eigen::Vector3d d_;
+  double size_;
+};
+
+}  // namespace unidist::nurbs

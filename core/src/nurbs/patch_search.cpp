@@ -1,0 +1,183 @@
+#include "nurbs/patch_search.h"
+
+#include <algorithm>
+#include <cmath>
+#include <queue>
+
+namespace unidist::nurbs {
+namespace {
+
+constexpr int kMaxDepth = 40;          // beyond this a node is a leaf whatever its size (subdivision has stalled)
+constexpr double kLeafFraction = 0.5;  // leaf: radius below this fraction of the objective's scale...
+constexpr double kLeafAngle = 0.5;    // ...and a normal cone narrower than this (rad): Newton converges there
+constexpr int kNewtonSteps = 60;
+
+struct Open {
+  double lower;
+  const PatchNode* node;
+  bool operator>(const Open& o) const { return lower > o.lower; }
+};
+
+bool touchesEdgeU(const PatchNode& n) { return n.s0 == 0 || n.s1 == 1; }  // an edge s = const of the patch
+bool touchesEdgeV(const PatchNode& n) { return n.t0 == 0 || n.t1 == 1; }
+
+/// Can the node hold a critical point of the objective (interior, or on a patch edge it touches)?
+bool mayHoldCritical(const PatchNode& n, const Objective& f) {
+  const Cone towards = f.criticalDirections(n.ball);
+  if (towards.all || n.normal.all || meetsEitherWay(n.normal, towards)) return true;
+  // Along an edge s = const the extremum of the edge curve needs the direction orthogonal to Sv; and vice versa.
+  if (touchesEdgeU(n) && canBeOrthogonal(n.cv, towards)) return true;
+  if (touchesEdgeV(n) && canBeOrthogonal(n.cu, towards)) return true;
+  return false;
+}
+
+}  // namespace
+
+PatchHit polish(const RationalBezierPatch& patch, int index, const Objective& f, double s, double t) {
+  PatchHit hit;
+  hit.patch = index;
+  Eigen::Vector2d x(s, t);
+  SurfaceDerivatives d = patch.derivatives(x[0], x[1]);
+  double value = f.value(d.point);
+  for (int step = 0; step < kNewtonSteps; ++step) {
+    Eigen::Vector2d g;
+    Eigen::Matrix2d H;
+    f.derivatives(d, g, H);
+    // Active set: a variable at its bound whose descent direction leaves the box stays fixed.
+    const bool fixU = (x[0] <= 0 && g[0] > 0) || (x[0] >= 1 && g[0] < 0);
+    const bool fixV = (x[1] <= 0 && g[1] > 0) || (x[1] >= 1 && g[1] < 0);
+    if (fixU && fixV) break;
+    Eigen::Matrix2d metric;  // first fundamental form: positive definite on a regular surface
+    metric << d.du.dot(d.du), d.du.dot(d.dv), d.du.dot(d.dv), d.dv.dot(d.dv);
+    auto solve = [&](const Eigen::Matrix2d& M, Eigen::Vector2d& out) {
+      if (fixU || fixV) {
+        const int k = fixU ? 1 : 0;
+        if (!(M(k, k) > 0)) return false;
+        out.setZero();
+        out[k] = -g[k] / M(k, k);
+        return true;
+      }
+      const double det = M.determinant();
+      if (!(det > 1e-14 * M.squaredNorm()) || !(M(0, 0) > 0)) return false;
+      out = -M.inverse() * g;
+      return true;
+    };
+    Eigen::Vector2d delta;
+    if (!solve(H, delta) && !solve(metric, delta)) {
+      // Degenerate metric (a pole): a plain gradient step scaled by the metric's size.
+      const double scale = std::max(metric.trace(), 1e-300);
+      delta = -g / scale;
+      if (fixU) delta[0] = 0;
+      if (fixV) delta[1] = 0;
+    }
+    // A step below the parameter resolution changes nothing any more (and the line search below would only
+    // burn evaluations on rounding noise).
+    if (!delta.allFinite() || delta.cwiseAbs().maxCoeff() < 1e-13) break;
+    // Backtracking: accept the first (halved) step that decreases the objective.
+    bool accepted = false;
+    double lambda = 1;
+    // A short step that does not decrease the objective is at rounding level: converged, no halving.
+    const int halvings = delta.cwiseAbs().maxCoeff() < 1e-6 ? 1 : 30;
+    for (int h = 0; h < halvings && !accepted; ++h, lambda *= 0.5) {
+      const Eigen::Vector2d trial = (x + lambda * delta).cwiseMax(0.0).cwiseMin(1.0);
+      if (trial == x) break;
+      const SurfaceDerivatives dt = patch.derivatives(trial[0], trial[1]);
+      const double vt = f.value(dt.point);
+      if (vt < value) {
+        accepted = true;
+        const double moved = (trial - x).cwiseAbs().maxCoeff();
+        x = trial;
+        d = dt;
+        value = vt;
+        if (moved < 1e-15) step = kNewtonSteps;  // converged to the last bit
+      }
+    }
+    if (!accepted) break;
+  }
+  hit.s = x[0];
+  hit.t = x[1];
+  hit.value = value;
+  hit.point = d.point;
+  return hit;
+}
+
+SearchResult minimise(const PatchForest& forest, const std::vector<RationalBezierPatch>& patches, const Objective& f,
+                      double tolerance, double tieTolerance, int skip) {
+  SearchResult out;
+  out.best.value = std::numeric_limits<double>::infinity();
+  std::vector<PatchHit> hits, polished;
+  auto offer = [&](const PatchHit& h) {
+    hits.push_back(h);
+    if (h.value < out.best.value) out.best = h;
+  };
+  auto offerCorners = [&](const PatchNode& n) {
+    const double s[4] = {n.s0, n.s1, n.s0, n.s1}, t[4] = {n.t0, n.t0, n.t1, n.t1};
+    for (int k = 0; k < 4; ++k) {
+      const double v = f.value(n.corners[static_cast<std::size_t>(k)]);
+      if (v < out.best.value + tieTolerance) offer({n.patch, s[k], t[k], v, n.corners[static_cast<std::size_t>(k)]});
+    }
+  };
+
+  std::priority_queue<Open, std::vector<Open>, std::greater<Open>> open;
+  std::vector<std::unique_ptr<PatchNode>> arena;
+  // Seed (nodal mapping): Newton from the parameters of the control point with the best objective value, so
+  // that the bound prunes from the start. Only a start: the search below proves or improves it.
+  const PatchNode* seedNode = nullptr;
+  int seedI = 0, seedJ = 0;
+  double seedValue = std::numeric_limits<double>::infinity();
+  for (const auto& root : forest.roots) {
+    if (root->patch == skip) continue;
+    offerCorners(*root);
+    for (int i = 0; i <= root->net.degreeU; ++i)
+      for (int j = 0; j <= root->net.degreeV; ++j) {
+        const double v = f.value(root->net.point(i, j));
+        if (v < seedValue) {
+          seedValue = v;
+          seedNode = root.get();
+          seedI = i;
+          seedJ = j;
+        }
+      }
+  }
+  if (seedNode) {
+    polished.push_back(polish(patches[static_cast<std::size_t>(seedNode->patch)], seedNode->patch, f,
+                              static_cast<double>(seedI) / seedNode->net.degreeU, static_cast<double>(seedJ) / seedNode->net.degreeV));
+    offer(polished.back());
+  }
+  for (const auto& root : forest.roots)
+    if (root->patch != skip) open.push({f.lowerBound(*root), root.get()});
+  while (!open.empty()) {
+    const Open top = open.top();
+    if (top.lower >= out.best.value - tolerance) break;
+    open.pop();
+    const PatchNode& n = *top.node;
+    if (++out.nodes > kNurbsSearchBudget) {
+      out.exhausted = true;
+      break;
+    }
+    if (!mayHoldCritical(n, f)) continue;  // its minimum is on its border: a neighbour's or a corner
+    const bool flat = !n.normal.all && n.normal.angle <= kLeafAngle && n.ball.radius <= kLeafFraction * f.leafScale(n.ball);
+    if (flat || n.depth >= kMaxDepth || n.ball.radius <= tolerance) {
+      // A small, nearly flat piece holds at most one minimum: when an earlier Newton run ended inside it,
+      // that run already found it.
+      bool known = false;
+      for (const PatchHit& m : polished)
+        known = known || (m.patch == n.patch && m.s >= n.s0 && m.s <= n.s1 && m.t >= n.t0 && m.t <= n.t1);
+      if (known && flat) continue;
+      const RationalBezierPatch& patch = patches[static_cast<std::size_t>(n.patch)];
+      polished.push_back(polish(patch, n.patch, f, 0.5 * (n.s0 + n.s1), 0.5 * (n.t0 + n.t1)));
+      offer(polished.back());
+      continue;
+    }
+    for (const PatchNode* c : forest.children(n, arena)) {
+      offerCorners(*c);
+      const double lb = f.lowerBound(*c);
+      if (lb < out.best.value - tolerance) open.push({lb, c});
+    }
+  }
+  for (const PatchHit& h : hits)
+    if (h.value <= out.best.value + tieTolerance) out.ties.push_back(h);
+  return out;
+}
+
+}  // namespace unidist::nurbs

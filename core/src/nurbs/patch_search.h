@@ -1,0 +1,52 @@
+// Global minimisation over the patch forest of a NURBS model, shared by the point query (minimise |S − q|)
+// and the support map (minimise −d·S). Best-first on a proved lower bound per node; a node survives only
+// when it can hold an interior critical point (the objective's direction is parallel to its normal cone) or
+// an edge critical point on a patch edge it touches (the direction is orthogonal to the tangent cone along
+// that edge); patch corners are evaluated as nodes appear. Survivors that are small and nearly flat are
+// polished by box-constrained Newton on the whole patch. Internal.
+#pragma once
+
+#include "nurbs/patch_tree.h"
+
+#include <vector>
+
+namespace unidist::nurbs {
+
+/// What is minimised.
+class Objective {
+ public:
+  virtual ~Objective() = default;
+  virtual double value(const Eigen::Vector3d& p) const = 0;
+  /// Proved: value >= this on the node's subpatch.
+  virtual double lowerBound(const PatchNode& n) const = 0;
+  /// Directions an interior critical point's normal must be parallel to (for the point query: q − S).
+  virtual Cone criticalDirections(const BoundingSphere& b) const = 0;
+  /// Gradient and Hessian (with respect to the local parameters) of a smooth function with the same minimisers.
+  virtual void derivatives(const SurfaceDerivatives& d, Eigen::Vector2d& gradient, Eigen::Matrix2d& hessian) const = 0;
+  /// Size that makes a node "small" (leaf when its radius is below a fraction of it).
+  virtual double leafScale(const BoundingSphere& b) const = 0;
+};
+
+/// A point of a patch found by the search.
+struct PatchHit {
+  int patch = -1;
+  double s = 0, t = 0, value = 0;
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();
+};
+
+struct SearchResult {
+  PatchHit best;
+  std::vector<PatchHit> ties;  ///< every hit within tieTolerance of the best (including it)
+  int nodes = 0;
+  bool exhausted = false;
+};
+
+/// Global minimum of the objective over every patch, to `tolerance` (absolute). Patches in `skip` are left out
+/// (-1 for none).
+SearchResult minimise(const PatchForest& forest, const std::vector<RationalBezierPatch>& patches, const Objective& f,
+                      double tolerance, double tieTolerance, int skip = -1);
+
+/// Box-constrained Newton on patch from (s, t); returns the best point reached.
+PatchHit polish(const RationalBezierPatch& patch, int index, const Objective& f, double s, double t);
+
+}  // namespace unidist::nurbs

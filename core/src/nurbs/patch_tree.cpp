@@ -1,0 +1,239 @@
+#include "nurbs/patch_tree.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace unidist::nurbs {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+// Slack added to every cone angle: the cones are computed in floating point from rounded nets.
+constexpr double kAngleSlack = 1e-9;
+
+double angleBetween(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  // atan2 of |a x b| and a·b stays accurate near 0 and π, unlike acos.
+  return std::atan2(a.cross(b).norm(), a.dot(b));
+}
+
+/// Binomial coefficients C(n, k) for n <= 2 kMaxNurbsDegree (built once).
+double binomial(int n, int k) {
+  static const std::vector<std::vector<double>> table = [] {
+    std::vector<std::vector<double>> t(2 * kMaxNurbsDegree + 1);
+    for (std::size_t m = 0; m < t.size(); ++m) {
+      t[m].assign(m + 1, 1.0);
+      for (std::size_t j = 1; j < m; ++j) t[m][j] = t[m - 1][j - 1] + t[m - 1][j];
+    }
+    return t;
+  }();
+  return table[static_cast<std::size_t>(n)][static_cast<std::size_t>(k)];
+}
+
+/// De Casteljau at a on points[0..n]: left gets the part over [0,a], right the part over [a,1].
+void splitRow(const std::vector<Eigen::Vector4d>& points, double a, std::vector<Eigen::Vector4d>& left,
+              std::vector<Eigen::Vector4d>& right) {
+  std::vector<Eigen::Vector4d> work = points;
+  const std::size_t n = points.size();
+  left.assign(n, Eigen::Vector4d::Zero());
+  right.assign(n, Eigen::Vector4d::Zero());
+  for (std::size_t level = 0; level < n; ++level) {
+    left[level] = work[0];
+    right[n - 1 - level] = work[n - 1 - level];
+    for (std::size_t i = 0; i + level + 1 < n; ++i) work[i] = (1 - a) * work[i] + a * work[i + 1];
+  }
+}
+
+/// Keeps the part of the patch over [a, b] in u (direction 0) or v (direction 1).
+RationalBezierPatch restrict(const RationalBezierPatch& patch, int direction, double a, double b) {
+  RationalBezierPatch out = patch;
+  const int lines = direction == 0 ? patch.degreeV + 1 : patch.degreeU + 1;
+  const int length = direction == 0 ? patch.degreeU + 1 : patch.degreeV + 1;
+  std::vector<Eigen::Vector4d> line(static_cast<std::size_t>(length)), left, right, unused;
+  for (int l = 0; l < lines; ++l) {
+    for (int k = 0; k < length; ++k) line[static_cast<std::size_t>(k)] = direction == 0 ? patch.at(k, l) : patch.at(l, k);
+    if (b < 1) {
+      splitRow(line, b, left, unused);
+      line = left;
+    }
+    if (a > 0) {
+      splitRow(line, a / b, unused, right);
+      line = right;
+    }
+    for (int k = 0; k < length; ++k) (direction == 0 ? out.at(k, l) : out.at(l, k)) = line[static_cast<std::size_t>(k)];
+  }
+  return out;
+}
+
+/// Bernstein coefficients (up to positive factors per coefficient) of the numerator X_u W − X W_u of Su:
+/// p Σ B_{i'}^{p-1}(u) B_k^p(u) B_j^q(v) B_l^q(v) [D((i'+1,j),(k,l)) − D((i',j),(k,l))], grouped by degree-
+/// elevated index (i'+k, j+l), where D(a, b) = w_b X_a − w_a X_b = w_a w_b (P_a − P_b) (computed from the
+/// Euclidean points so that equal points give exactly zero). With transpose the roles of u and v swap.
+std::vector<Eigen::Vector3d> derivativeCoefficients(const RationalBezierPatch& patch, bool transpose) {
+  const int p = transpose ? patch.degreeV : patch.degreeU, q = transpose ? patch.degreeU : patch.degreeV;
+  std::vector<Eigen::Vector3d> P(static_cast<std::size_t>((p + 1) * (q + 1)));
+  std::vector<double> w(P.size());
+  for (int i = 0; i <= p; ++i)
+    for (int j = 0; j <= q; ++j) {
+      const Eigen::Vector4d& h = transpose ? patch.at(j, i) : patch.at(i, j);
+      const auto k = static_cast<std::size_t>(i * (q + 1) + j);
+      P[k] = h.head<3>() / h[3];
+      w[k] = h[3];
+    }
+  const auto idx = [q](int i, int j) { return static_cast<std::size_t>(i * (q + 1) + j); };
+  const int R = 2 * p - 1, S = 2 * q;
+  std::vector<Eigen::Vector3d> coef(static_cast<std::size_t>((R + 1) * (S + 1)), Eigen::Vector3d::Zero());
+  for (int i = 0; i < p; ++i)
+    for (int k = 0; k <= p; ++k) {
+      const double fu = binomial(p - 1, i) * binomial(p, k) / binomial(R, i + k);
+      for (int j = 0; j <= q; ++j) {
+        const std::size_t a = idx(i + 1, j), b = idx(i, j);
+        for (int l = 0; l <= q; ++l) {
+          const std::size_t c = idx(k, l);
+          const double f = fu * binomial(q, j) * binomial(q, l) / binomial(S, j + l) * w[c];
+          coef[static_cast<std::size_t>((i + k) * (S + 1) + j + l)] += f * (w[a] * (P[a] - P[c]) - w[b] * (P[b] - P[c]));
+        }
+      }
+    }
+  return coef;
+}
+
+}  // namespace
+
+Cone coneOfVectors(const std::vector<Eigen::Vector3d>& vectors) {
+  Cone c;
+  bool started = false;
+  for (const Eigen::Vector3d& v : vectors) {
+    const double n = v.norm();
+    if (n == 0) continue;  // a zero vector adds nothing to a non-negative combination
+    const Eigen::Vector3d u = v / n;
+    if (!started) {
+      c = {u, 0.0, false};
+      started = true;
+      continue;
+    }
+    const double phi = angleBetween(c.axis, u);
+    if (phi <= c.angle) continue;
+    const double grown = 0.5 * (c.angle + phi);
+    if (grown >= 0.5 * kPi) return Cone{};
+    // Rotate the axis toward u by (phi − angle)/2 in their common plane.
+    const Eigen::Vector3d w = (u - c.axis.dot(u) * c.axis).normalized();
+    const double turn = 0.5 * (phi - c.angle);
+    c.axis = (std::cos(turn) * c.axis + std::sin(turn) * w).normalized();
+    c.angle = grown;
+  }
+  if (!started) return Cone{};
+  c.angle += kAngleSlack;
+  if (c.angle >= 0.5 * kPi) return Cone{};
+  return c;
+}
+
+Cone crossCone(const Cone& cu, const Cone& cv) {
+  if (cu.all || cv.all) return Cone{};
+  const double beta = angleBetween(cu.axis, cv.axis), sum = cu.angle + cv.angle;
+  if (!(sum < beta && beta < kPi - sum)) return Cone{};
+  const double su = std::sin(cu.angle), sv = std::sin(cv.angle);
+  const double s = std::sqrt(su * su + 2 * su * sv * std::abs(std::cos(beta)) + sv * sv) / std::sin(beta);
+  if (!(s < 1)) return Cone{};
+  const Eigen::Vector3d axis = cu.axis.cross(cv.axis);
+  return Cone{axis.normalized(), std::asin(s) + kAngleSlack, false};
+}
+
+Cone coneTowards(const Eigen::Vector3d& q, const Eigen::Vector3d& c, double r) {
+  const Eigen::Vector3d d = q - c;
+  const double n = d.norm();
+  if (!(n > r * (1 + 1e-12))) return Cone{};
+  return Cone{d / n, std::asin(std::min(1.0, r / n)) + kAngleSlack, false};
+}
+
+bool meetsEitherWay(const Cone& a, const Cone& b) {
+  if (a.all || b.all) return true;
+  const double phi = angleBetween(a.axis, b.axis), sum = a.angle + b.angle;
+  return phi <= sum || kPi - phi <= sum;
+}
+
+bool canBeOrthogonal(const Cone& a, const Cone& b) {
+  if (a.all || b.all) return true;
+  return std::abs(angleBetween(a.axis, b.axis) - 0.5 * kPi) <= a.angle + b.angle;
+}
+
+BoundingSphere ballOfNet(const std::vector<Eigen::Vector4d>& net) {
+  Aabb box;
+  for (const Eigen::Vector4d& h : net) box.extend(h.head<3>() / h[3]);
+  BoundingSphere b;
+  b.center = box.center();
+  for (const Eigen::Vector4d& h : net) b.radius = std::max(b.radius, (h.head<3>() / h[3] - b.center).norm());
+  // Widen for the rounding of the subdivided net and of this computation (relative to the coordinates' size).
+  const double scale = b.center.cwiseAbs().maxCoeff() + b.radius;
+  b.radius += 256 * std::numeric_limits<double>::epsilon() * scale;
+  return b;
+}
+
+void tangentCones(const RationalBezierPatch& patch, Cone& cu, Cone& cv) {
+  cu = coneOfVectors(derivativeCoefficients(patch, false));
+  cv = coneOfVectors(derivativeCoefficients(patch, true));
+}
+
+RationalBezierPatch subpatch(const RationalBezierPatch& patch, double s0, double s1, double t0, double t1) {
+  RationalBezierPatch out = restrict(restrict(patch, 0, s0, s1), 1, t0, t1);
+  out.u0 = patch.u0 + s0 * (patch.u1 - patch.u0);
+  out.u1 = patch.u0 + s1 * (patch.u1 - patch.u0);
+  out.v0 = patch.v0 + t0 * (patch.v1 - patch.v0);
+  out.v1 = patch.v0 + t1 * (patch.v1 - patch.v0);
+  return out;
+}
+
+std::unique_ptr<PatchNode> makeNode(RationalBezierPatch net, int patch, int depth, double s0, double s1, double t0,
+                                    double t1) {
+  auto n = std::make_unique<PatchNode>();
+  n->net = std::move(net);
+  n->patch = patch;
+  n->depth = depth;
+  n->s0 = s0;
+  n->s1 = s1;
+  n->t0 = t0;
+  n->t1 = t1;
+  n->ball = ballOfNet(n->net.net);
+  tangentCones(n->net, n->cu, n->cv);
+  n->normal = crossCone(n->cu, n->cv);
+  const int p = n->net.degreeU, q = n->net.degreeV;
+  n->corners = {n->net.point(0, 0), n->net.point(p, 0), n->net.point(0, q), n->net.point(p, q)};
+  return n;
+}
+
+PatchForest::PatchForest(const std::vector<RationalBezierPatch>& patches) {
+  for (std::size_t k = 0; k < patches.size(); ++k) roots.push_back(makeNode(patches[k], static_cast<int>(k), 0, 0, 1, 0, 1));
+  nodes = roots.size();
+}
+
+std::array<const PatchNode*, 4> PatchForest::children(const PatchNode& n,
+                                                      std::vector<std::unique_ptr<PatchNode>>& arena) const {
+  auto make = [&](std::array<std::unique_ptr<PatchNode>, 4>& out) {
+    const double sm = 0.5 * (n.s0 + n.s1), tm = 0.5 * (n.t0 + n.t1);
+    for (int k = 0; k < 4; ++k) {
+      const bool right = k & 1, upper = k & 2;
+      RationalBezierPatch piece = restrict(restrict(n.net, 0, right ? 0.5 : 0.0, right ? 1.0 : 0.5), 1,
+                                           upper ? 0.5 : 0.0, upper ? 1.0 : 0.5);
+      out[static_cast<std::size_t>(k)] = makeNode(std::move(piece), n.patch, n.depth + 1, right ? sm : n.s0,
+                                                  right ? n.s1 : sm, upper ? tm : n.t0, upper ? n.t1 : tm);
+    }
+  };
+  std::array<const PatchNode*, 4> out{};
+  if (n.depth < kCachedDepth) {
+    std::call_once(n.childrenOnce, [&] {
+      make(n.cached);
+      nodes += 4;
+      bytes += 4 * (sizeof(PatchNode) + n.net.net.size() * sizeof(Eigen::Vector4d));
+    });
+    for (int k = 0; k < 4; ++k) out[static_cast<std::size_t>(k)] = n.cached[static_cast<std::size_t>(k)].get();
+    return out;
+  }
+  std::array<std::unique_ptr<PatchNode>, 4> made;
+  make(made);
+  for (int k = 0; k < 4; ++k) {
+    out[static_cast<std::size_t>(k)] = made[static_cast<std::size_t>(k)].get();
+    arena.push_back(std::move(made[static_cast<std::size_t>(k)]));
+  }
+  return out;
+}
+
+}  // namespace unidist::nurbs

@@ -1,0 +1,71 @@
+// The subdivision tree of every Bézier patch of a NURBS model: per node a subpatch (homogeneous net cut by de
+// Casteljau), a proved bounding ball and cones bounding the directions of Su, Sv and the normal Su x Sv.
+// Children are made lazily; nodes down to kCachedDepth are kept (std::call_once per node, so concurrent
+// queries build each node once), deeper nodes belong to the caller's scratch arena. Internal.
+#pragma once
+
+#include "unidist/nurbs.h"
+
+#include <array>
+#include <atomic>
+#include <memory>
+#include <mutex>
+#include <vector>
+
+namespace unidist::nurbs {
+
+/// A cone of directions {axis, half-angle}; `all` means every direction (no bound).
+struct Cone {
+  Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();
+  double angle = 0;
+  bool all = true;
+};
+
+/// Smallest-ish cone containing every non-zero vector given (incremental growth); all when some angle reaches π/2
+/// (a wider cone would not contain the non-negative combinations of its vectors).
+Cone coneOfVectors(const std::vector<Eigen::Vector3d>& vectors);
+/// Cone of the cross products v x w, v in cu, w in cv (algorithms.md §1.2, corrected formula).
+Cone crossCone(const Cone& cu, const Cone& cv);
+/// Cone of the directions from the points of a ball (c, r) to q.
+Cone coneTowards(const Eigen::Vector3d& q, const Eigen::Vector3d& c, double r);
+/// Some direction of a is within the cone b or its negation.
+bool meetsEitherWay(const Cone& a, const Cone& b);
+/// Some v in a and w in b with v·w = 0.
+bool canBeOrthogonal(const Cone& a, const Cone& b);
+
+/// Proved ball around the Euclidean control points (convex hull property), widened for rounding.
+BoundingSphere ballOfNet(const std::vector<Eigen::Vector4d>& net);
+/// Cones of Su and Sv over the whole patch, from the Bernstein coefficients of the rational derivative numerators.
+void tangentCones(const RationalBezierPatch& patch, Cone& cu, Cone& cv);
+/// The subpatch over [s0,s1] x [t0,t1] of the local parameters.
+RationalBezierPatch subpatch(const RationalBezierPatch& patch, double s0, double s1, double t0, double t1);
+
+struct PatchNode {
+  RationalBezierPatch net;             // the subpatch, local parameters of its own
+  int patch = 0, depth = 0;
+  double s0 = 0, s1 = 1, t0 = 0, t1 = 1;  // its box in the patch's local parameters
+  BoundingSphere ball;
+  Cone cu, cv, normal;
+  std::array<Eigen::Vector3d, 4> corners;  // surface points at (s0,t0), (s1,t0), (s0,t1), (s1,t1)
+
+  mutable std::once_flag childrenOnce;
+  mutable std::array<std::unique_ptr<PatchNode>, 4> cached;
+};
+
+constexpr int kCachedDepth = 7;
+
+struct PatchForest {
+  std::vector<std::unique_ptr<PatchNode>> roots;
+  mutable std::atomic<std::size_t> nodes{0}, bytes{0};
+
+  explicit PatchForest(const std::vector<RationalBezierPatch>& patches);
+  /// The four children of n (quadrants in u-major order). Cached ones are built once; deeper ones go to arena.
+  std::array<const PatchNode*, 4> children(const PatchNode& n,
+                                           std::vector<std::unique_ptr<PatchNode>>& arena) const;
+};
+
+/// A node for `net` covering [s0,s1] x [t0,t1] of patch `patch`: ball, cones and corners computed.
+std::unique_ptr<PatchNode> makeNode(RationalBezierPatch net, int patch, int depth, double s0, double s1, double t0,
+                                    double t1);
+
+}  // namespace unidist::nurbs

@@ -1,0 +1,238 @@
+// NURBS readers: .unurbs.json and IGES (entity 128, with entity 124 transformations) read right, and every class
+// of malformed file rejected with an InputError naming the file and the JSON path, byte or line of the problem.
+#include "../core/nurbs_fixtures.h"
+#include "error_of.h"
+#include "unidist/adapters/load.h"
+#include "unidist/nurbs.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <unistd.h>
+
+namespace unidist {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::errorOf;
+
+const fs::path kFixtures = fs::path(UNIDIST_NURBS_DATA_DIR);
+const fs::path kModels = fs::path(UNIDIST_SHARED_DIR) / "acceptance" / "models";
+
+std::string readText(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+const NurbsModel& asNurbs(const std::shared_ptr<const Model>& m) {
+  const auto* n = dynamic_cast<const NurbsModel*>(m.get());
+  if (!n) throw std::runtime_error("not a NURBS model");
+  return *n;
+}
+
+/// JSON text of a model made of one surface.
+std::string toJson(const NurbsSurface& s, bool solid) {
+  std::ostringstream o;
+  o.precision(17);
+  auto list = [&](const std::vector<double>& v) {
+    o << "[";
+    for (std::size_t k = 0; k < v.size(); ++k) o << (k ? "," : "") << v[k];
+    o << "]";
+  };
+  o << "{\"type\":\"nurbs\",\"solid\":" << (solid ? "true" : "false") << ",\"surfaces\":[{\"degree_u\":" << s.degreeU()
+    << ",\"degree_v\":" << s.degreeV() << ",\"knots_u\":";
+  list(s.knotsU());
+  o << ",\"knots_v\":";
+  list(s.knotsV());
+  o << ",\"control_points\":[";
+  for (int i = 0; i < s.countU(); ++i) {
+    o << (i ? "," : "") << "[";
+    for (int j = 0; j < s.countV(); ++j) {
+      const Eigen::Vector4d c = s.controlPoint(i, j);
+      o << (j ? "," : "") << "[" << c[0] << "," << c[1] << "," << c[2] << "," << c[3] << "]";
+    }
+    o << "]";
+  }
+  o << "]}]}";
+  return o.str();
+}
+
+std::string replaceOnce(std::string text, const std::string& from, const std::string& to) {
+  const std::size_t at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << "fixture edit: '" << from << "' not found";
+  if (at != std::string::npos) text.replace(at, from.size(), to);
+  return text;
+}
+
+class NurbsReaders : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("unidist_nurbs_readers_" + std::to_string(::getpid()));
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  std::string write(const std::string& name, const std::string& contents) {
+    const fs::path p = dir_ / name;
+    std::ofstream(p, std::ios::binary) << contents;
+    return p.string();
+  }
+
+  /// Loading `contents` as `name` fails with a one-line message starting "<path>" + `where` and holding `fragment`.
+  void expectError(const std::string& name, const std::string& contents, const std::string& where,
+                   const std::string& fragment) {
+    const std::string path = write(name, contents);
+    const std::string msg = errorOf([&] { loadModel(path); });
+    EXPECT_EQ(msg.rfind(path + where, 0), 0u) << "message: '" << msg << "'\nexpected to start with: '" << path + where << "'";
+    EXPECT_NE(msg.find(fragment), std::string::npos) << "message: '" << msg << "'\nexpected: '" << fragment << "'";
+    EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
+  }
+
+  fs::path dir_;
+};
+
+// ------------------------------------------------------------------------------------------- .unurbs.json
+
+TEST_F(NurbsReaders, UnurbsSphereRoundTrip) {
+  const std::string path = write("sphere.unurbs.json", toJson(nurbs_fixtures::sphereSurface(2.0), true));
+  const auto model = loadModel(path);
+  const NurbsModel& m = asNurbs(model);
+  EXPECT_TRUE(m.isSolid());
+  EXPECT_EQ(m.surfaces().size(), 1u);
+  EXPECT_NEAR(m.closestPoint(Eigen::Vector3d(0, 3, 0)).signedDistance, 1.0, 1e-12);
+  EXPECT_NEAR(m.closestPoint(Eigen::Vector3d(0.5, 0, 0)).signedDistance, -1.5, 1e-12);
+  const auto open = loadModel(write("wavy.UNURBS.JSON", toJson(nurbs_fixtures::wavySurface(), false)));
+  EXPECT_FALSE(open->isSolid());
+}
+
+TEST_F(NurbsReaders, SharedAcceptanceModels) {
+  if (!fs::exists(kModels / "sphere_nurbs.unurbs.json")) GTEST_SKIP() << "shared models not found at " << kModels;
+  for (const char* name : {"sphere_nurbs.unurbs.json", "torus_nurbs.unurbs.json", "sphere_nurbs_1e4.unurbs.json"}) {
+    SCOPED_TRACE(name);
+    EXPECT_TRUE(loadModel((kModels / name).string())->isSolid());
+  }
+  EXPECT_FALSE(loadModel((kModels / "wavy_patch.unurbs.json").string())->isSolid());
+  const std::string bad = (kModels / "bad_net.unurbs.json").string();
+  const std::string msg = errorOf([&] { loadModel(bad); });
+  EXPECT_EQ(msg.rfind(bad + ": surfaces[0]: knots_u: wrong length", 0), 0u) << msg;
+}
+
+TEST_F(NurbsReaders, MalformedUnurbs) {
+  const std::string good = toJson(nurbs_fixtures::sphereSurface(), true);
+  const std::string n = "m.unurbs.json";
+  expectError(n, "{\"type\": \"nurbs\", ", ": byte ", "not valid JSON");
+  expectError(n, "", ": byte 0: ", "not valid JSON");
+  expectError(n, "[1, 2]", ": top level: ", "must be a JSON object");
+  expectError(n, replaceOnce(good, "\"solid\":true,", ""), ": top level: ", "missing key \"solid\"");
+  expectError(n, replaceOnce(good, "\"solid\":true,", "\"solid\":true,\"colour\":1,"), ": top level: ", "unknown key \"colour\"");
+  expectError(n, replaceOnce(good, "\"nurbs\"", "\"mesh\""), ": type: ", "\"nurbs\"");
+  expectError(n, replaceOnce(good, "\"solid\":true", "\"solid\":1"), ": solid: ", "true or false");
+  expectError(n, "{\"type\":\"nurbs\",\"solid\":false,\"surfaces\":[]}", ": surfaces: ", "non-empty array");
+  expectError(n, replaceOnce(good, "\"degree_u\":2", "\"degree_u\":2.5"), ": surfaces[0].degree_u: ", "integer");
+  expectError(n, replaceOnce(good, "\"degree_v\":2", "\"degree_v\":0"), ": surfaces[0].degree_v: ", "out of range");
+  expectError(n, replaceOnce(good, "\"knots_u\":[0,0,0,", "\"knots_u\":[0,0,\"a\","), ": surfaces[0].knots_u[2]: ", "must be a number");
+  expectError(n, replaceOnce(good, "\"knots_u\":[0,0,0,0.25,0.25,", "\"knots_u\":[0,0,0,0.25,0.2,"), ": surfaces[0]: ",
+              "knots_u is decreasing at index 4");
+  expectError(n, replaceOnce(good, "\"knots_v\":[0,0,0,", "\"knots_v\":[0,0,"), ": surfaces[0]: ", "knots_v: wrong length 7 (expected 8");
+  expectError(n, replaceOnce(good, "\"knots_u\":[0,0,0,0.25,0.25,0.5,0.5,0.75,0.75,1,1,1]", "\"knots_u\":[1,1,1,1,1,1,1,1,1,1,1,1]"),
+              ": surfaces[0]: ", "zero-length parameter domain");
+  expectError(n, replaceOnce(good, "[0,0,-1,1],", "[0,0,-1],"), ": surfaces[0].control_points[0][0]: ", "[x, y, z, w]");
+  expectError(n, replaceOnce(good, "[0,0,-1,1],", "[0,0,-1,0],"), ": surfaces[0].control_points[0][0]: ", "weight must be positive");
+  expectError(n, replaceOnce(good, "[0,0,-1,1],", "[0,0,-1,-2],"), ": surfaces[0].control_points[0][0]: ", "weight must be positive");
+  expectError(n, replaceOnce(good, "[0,0,-1,1],", "[0,0,\"NaN\",1],"), ": surfaces[0].control_points[0][0][2]: ", "must be a number");
+  expectError(n, replaceOnce(good, "[0,0,-1,1],", "[0,0,1e999,1],"), "", "");  // NaN/Inf cannot enter: either message is fine
+  expectError(n, replaceOnce(good, "[0,0,-1,1],", ""), ": surfaces[0]: ", "control net row 1 has 5 points, row 0 has 4");
+  // A solid that does not close.
+  const nurbs_fixtures::Net half = [] {
+    const NurbsSurface s = nurbs_fixtures::sphereSurface();
+    nurbs_fixtures::Net h;
+    for (int i = 0; i <= 4; ++i) {
+      h.emplace_back();
+      for (int j = 0; j < s.countV(); ++j) h.back().push_back(s.controlPoint(i, j));
+    }
+    return h;
+  }();
+  const NurbsSurface hemi(2, 2, {0, 0, 0, .5, .5, 1, 1, 1}, {0, 0, 0, .5, .5, 1, 1, 1}, half);
+  expectError(n, toJson(hemi, true), ": ", "not closed");
+  EXPECT_NO_THROW(loadModel(write("half.unurbs.json", toJson(hemi, false))));
+}
+
+// --------------------------------------------------------------------------------------------------- IGES
+
+TEST_F(NurbsReaders, IgesSphereWithTransformation) {
+  const auto model = loadModel((kFixtures / "sphere_moved.igs").string());
+  const NurbsModel& m = asNurbs(model);
+  EXPECT_TRUE(m.isSolid());  // the surfaces close up
+  // The unit sphere rotated about z and moved to (1, 2, 3) by entity 124.
+  const Eigen::Vector3d c(1, 2, 3);
+  for (const Eigen::Vector3d& q : {Eigen::Vector3d(4, 2, 3), Eigen::Vector3d(1, 2, 3.5), Eigen::Vector3d(-1, -1, 0)})
+    EXPECT_NEAR(m.closestPoint(q).signedDistance, (q - c).norm() - 1, 1e-12);
+  // The rotation: the surface's (u, v) = (0, 0.5) point was (1, 0, 0) and is now (0, 1, 0) + c.
+  EXPECT_LT((m.surfaces()[0].evaluate(0, 0.5) - (c + Eigen::Vector3d(0, 1, 0))).norm(), 1e-14);
+}
+
+TEST_F(NurbsReaders, IgesTorusWithOtherDelimiters) {
+  const auto model = loadModel((kFixtures / "torus_delims.igs").string());
+  const NurbsModel& m = asNurbs(model);
+  EXPECT_TRUE(m.isSolid());
+  EXPECT_NEAR(m.closestPoint(Eigen::Vector3d(0, 0, 0)).signedDistance, 0.75, 1e-12);
+  EXPECT_NEAR(m.closestPoint(Eigen::Vector3d(1, 0, 0)).signedDistance, -0.25, 1e-12);
+}
+
+/// Replaces columns [from, from + text.size()) of physical line `line` (from 1) of an IGES text.
+std::string patchColumns(std::string text, int line, std::size_t from, const std::string& replacement) {
+  std::size_t at = 0;
+  for (int k = 1; k < line; ++k) at = text.find('\n', at) + 1;
+  text.replace(at + from, replacement.size(), replacement);
+  return text;
+}
+
+std::string dropLine(std::string text, int line) {
+  std::size_t at = 0;
+  for (int k = 1; k < line; ++k) at = text.find('\n', at) + 1;
+  text.erase(at, text.find('\n', at) + 1 - at);
+  return text;
+}
+
+std::string keepLines(const std::string& text, std::initializer_list<int> lines) {
+  std::istringstream in(text);
+  std::string line, out;
+  for (int k = 1; std::getline(in, line); ++k)
+    for (int keep : lines)
+      if (keep == k) out += line + "\n";
+  return out;
+}
+
+TEST_F(NurbsReaders, MalformedIges) {
+  // sphere_moved.igs: line 1 S, lines 2-3 G, lines 4-5 D (entity 124), 6-7 D (entity 128), P from line 8 (124)
+  // and line 9 on (128).
+  const std::string good = readText(kFixtures / "sphere_moved.igs");
+  ASSERT_FALSE(good.empty());
+  const std::string n = "m.igs";
+  expectError(n, "", ":1: ", "no directory section");
+  expectError(n, good.substr(0, good.find('\n') + 1) + good.substr(good.find('\n') + 1, 40) + "\n", ":2: ",
+              "shorter than 73 columns");
+  expectError(n, patchColumns(good, 5, 72, "X"), ":5: ", "unknown section letter 'X'");
+  expectError(n, patchColumns(good, 6, 8, "      99"), ":6: ", "parameter data pointer 99 is outside the P section");
+  expectError(n, patchColumns(good, 6, 48, "       7"), ":6: ", "does not name an entity 124");
+  expectError(n, patchColumns(good, 7, 0, "     126"), ":7: ", "different entity types");
+  expectError(n, dropLine(good, 7), ":", "odd number of directory lines");
+  expectError(n, patchColumns(good, 9, 22, "0.2x"), ":9: ", "is not a number");
+  expectError(n, patchColumns(good, 9, 0, "127"), ":9: ", "does not start with the entity type 128");
+  expectError(n, patchColumns(good, 2, 0, "2H"), ":2: ", "delimiter");
+  expectError(n, patchColumns(good, 7, 24, "       1"), ":", "missing record delimiter");
+  // A weight of zero: the surface's own check, with the line of the entity.
+  expectError(n, replaceOnce(good, ",1,0.7071067811865476,1,0.7071067811865476,1,", ",1,0.7071067811865476,0,0.7071067811865476,1,"),
+              ":9: ", "weight");
+  // Only the transformation (S, G, its D entry and P line, T): no surface.
+  expectError(n, keepLines(good, {1, 2, 3, 4, 5, 8, 16}), ":", "no rational B-spline surface (entity 128)");
+}
+
+}  // namespace
+}  // namespace unidist

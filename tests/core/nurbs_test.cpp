@@ -1,0 +1,443 @@
+// NURBS surfaces and models against analytic truth (rational sphere, torus, cylinder), finite differences, and a
+// dense-sampling + Newton oracle (bicubic wavy patch).
+#include "adapters/error_of.h"
+#include "nurbs/patch_tree.h"
+#include "nurbs_fixtures.h"
+
+#include "unidist/nurbs.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+#include <random>
+#include <thread>
+
+namespace unidist {
+namespace {
+
+using namespace nurbs_fixtures;
+using Vec = Eigen::Vector3d;
+
+double sphereDistance(const Vec& q, double R, const Vec& c = Vec::Zero()) { return (q - c).norm() - R; }
+double torusDistance(const Vec& q, double R, double a) {
+  return std::hypot(std::hypot(q.x(), q.y()) - R, q.z()) - a;
+}
+
+std::shared_ptr<NurbsModel> model(NurbsSurface s, bool solid) {
+  std::vector<NurbsSurface> v;
+  v.push_back(std::move(s));
+  return std::make_shared<NurbsModel>(std::move(v), solid);
+}
+
+using unidist::testing::errorOf;
+
+// ---- evaluation -------------------------------------------------------------------------------------------
+
+TEST(NurbsSurface, RationalFormsLieOnTheirAnalyticSurfaces) {
+  const NurbsSurface sphere = sphereSurface(2.0, Vec(1, -2, 3)), torus = torusSurface(1.0, 0.25), cylinder = cylinderSurface(0.5, 1.0);
+  for (int i = 0; i <= 40; ++i)
+    for (int j = 0; j <= 40; ++j) {
+      const double u = i / 40.0, v = j / 40.0;
+      EXPECT_NEAR(sphereDistance(sphere.evaluate(u, v), 2.0, Vec(1, -2, 3)), 0, 1e-14);
+      EXPECT_NEAR(torusDistance(torus.evaluate(u, v), 1.0, 0.25), 0, 1e-14);
+      const Vec c = cylinder.evaluate(u, v);
+      EXPECT_NEAR(std::hypot(c.x(), c.y()), 0.5, 1e-14);
+      EXPECT_NEAR(c.z(), -1 + 2 * v, 1e-14);
+    }
+  EXPECT_NEAR((sphere.evaluate(0.3, 0) - Vec(1, -2, 1)).norm(), 0, 1e-14);  // the south pole
+}
+
+TEST(NurbsSurface, DerivativesMatchFiniteDifferences) {
+  for (const NurbsSurface& s : {wavySurface(), torusSurface(), sphereSurface()}) {
+    for (double u : {0.13, 0.31, 0.52, 0.77}) {
+      for (double v : {0.17, 0.38, 0.61, 0.83}) {
+        const double h = 1e-5;
+        const SurfaceDerivatives d = s.derivatives(u, v);
+        const SurfaceDerivatives pu = s.derivatives(u + h, v), mu = s.derivatives(u - h, v);
+        const SurfaceDerivatives pv = s.derivatives(u, v + h), mv = s.derivatives(u, v - h);
+        const double scale = 1 + d.du.norm() + d.duu.norm() + d.dvv.norm();
+        EXPECT_LT((d.du - (pu.point - mu.point) / (2 * h)).norm(), 1e-7 * scale);
+        EXPECT_LT((d.dv - (pv.point - mv.point) / (2 * h)).norm(), 1e-7 * scale);
+        EXPECT_LT((d.duu - (pu.du - mu.du) / (2 * h)).norm(), 1e-6 * scale);
+        EXPECT_LT((d.dvv - (pv.dv - mv.dv) / (2 * h)).norm(), 1e-6 * scale);
+        EXPECT_LT((d.duv - (pv.du - mv.du) / (2 * h)).norm(), 1e-6 * scale);
+      }
+    }
+  }
+}
+
+TEST(NurbsSurface, BezierPatchesReproduceTheSurface) {
+  for (const NurbsSurface& s : {wavySurface(), torusSurface(), sphereSurface(), cylinderSurface()}) {
+    const std::vector<RationalBezierPatch> patches = s.bezierPatches();
+    double area = 0;
+    for (const RationalBezierPatch& p : patches) {
+      area += (p.u1 - p.u0) * (p.v1 - p.v0);
+      for (double a : {0.0, 0.2, 0.5, 0.9, 1.0})
+        for (double b : {0.0, 0.35, 0.7, 1.0}) {
+          const double u = p.u0 + a * (p.u1 - p.u0), v = p.v0 + b * (p.v1 - p.v0);
+          const SurfaceDerivatives bp = p.derivatives(a, b), ns = s.derivatives(u, v);
+          EXPECT_LT((bp.point - ns.point).norm(), 1e-13);
+          EXPECT_LT((bp.du - ns.du * (p.u1 - p.u0)).norm(), 1e-11);
+          EXPECT_LT((bp.dv - ns.dv * (p.v1 - p.v0)).norm(), 1e-11);
+        }
+    }
+    EXPECT_NEAR(area, (s.uMax() - s.uMin()) * (s.vMax() - s.vMin()), 1e-14);  // the patches tile the domain
+  }
+  EXPECT_EQ(wavySurface().bezierPatches().size(), 16u);  // 4 x 4 non-empty knot intervals
+  EXPECT_EQ(sphereSurface().bezierPatches().size(), 8u);
+}
+
+TEST(NurbsSurface, UnclampedKnotVectorsUseTheirDomain) {
+  // A uniform unclamped quadratic curve direction: domain [t_2, t_5] = [2, 5]; Bézier pieces must agree.
+  Net net;
+  for (int i = 0; i < 5; ++i) {
+    net.emplace_back();
+    for (int j = 0; j < 2; ++j) net.back().emplace_back(i, j, std::sin(i) * 0.3, 1 + 0.2 * i);
+  }
+  const NurbsSurface s(2, 1, {0, 1, 2, 3, 4, 5, 6, 7}, {0, 0, 1, 1}, net);
+  EXPECT_EQ(s.uMin(), 2);
+  EXPECT_EQ(s.uMax(), 5);
+  for (const RationalBezierPatch& p : s.bezierPatches())
+    for (double a : {0.0, 0.5, 1.0}) EXPECT_LT((p.evaluate(a, 0.3) - s.evaluate(p.u0 + a * (p.u1 - p.u0), 0.3)).norm(), 1e-13);
+}
+
+TEST(NurbsSurface, InvalidInputIsNamed) {
+  const NurbsSurface good = sphereSurface();
+  Net net;
+  for (int i = 0; i < 9; ++i) {
+    net.emplace_back();
+    for (int j = 0; j < 5; ++j) net.back().push_back(good.controlPoint(i, j));
+  }
+  auto build = [&](int p, int q, std::vector<double> ku, std::vector<double> kv, Net n) {
+    return errorOf([&] { NurbsSurface(p, q, ku, kv, n); });
+  };
+  const std::vector<double> ku = circleKnots(), kv = {0, 0, 0, .5, .5, 1, 1, 1};
+  EXPECT_NE(build(0, 2, ku, kv, net).find("degree 0"), std::string::npos);
+  std::vector<double> bad = ku;
+  bad[4] = 0.1;
+  EXPECT_NE(build(2, 2, bad, kv, net).find("knots_u is decreasing at index 4"), std::string::npos);
+  EXPECT_NE(build(2, 2, ku, {0, 0, 0, 1, 1, 1}, net).find("knots_v: wrong length 6 (expected 8"), std::string::npos);
+  EXPECT_NE(build(2, 2, ku, {0, 0, 0, 0, 0, 0, 0, 0}, net).find("zero-length parameter domain"), std::string::npos);
+  Net ragged = net;
+  ragged[3].pop_back();
+  EXPECT_NE(build(2, 2, ku, kv, ragged).find("row 3 has 4 points"), std::string::npos);
+  EXPECT_NE(build(2, 2, ku, kv, Net(2, net[0])).find("needs at least 3"), std::string::npos);
+  for (double w : {0.0, -1.0, std::nan("")}) {
+    Net n = net;
+    n[2][1][3] = w;
+    EXPECT_NE(build(2, 2, ku, kv, n).find("control point [2][1]: weight"), std::string::npos);
+  }
+  Net n = net;
+  n[1][4][0] = std::nan("");
+  EXPECT_NE(build(2, 2, ku, kv, n).find("control point [1][4]: coordinate is not finite"), std::string::npos);
+  std::vector<double> nanKnot = ku;
+  nanKnot[5] = std::nan("");
+  EXPECT_NE(build(2, 2, nanKnot, kv, net).find("knots_u[5] is not finite"), std::string::npos);
+}
+
+// ---- subdivision tree: proved balls and cones -------------------------------------------------------------
+
+/// Visits every node of the forest down to `depth` (building it) and checks balls and cones by dense sampling.
+void checkNodesBySampling(const NurbsModel& m, int depth) {
+  std::vector<std::unique_ptr<nurbs::PatchNode>> arena;
+  std::function<void(const nurbs::PatchNode&)> visit = [&](const nurbs::PatchNode& n) {
+    const RationalBezierPatch& P = m.patches()[static_cast<std::size_t>(n.patch)];
+    for (int i = 0; i <= 12; ++i)
+      for (int j = 0; j <= 12; ++j) {
+        const double s = n.s0 + (n.s1 - n.s0) * i / 12.0, t = n.t0 + (n.t1 - n.t0) * j / 12.0;
+        const SurfaceDerivatives d = P.derivatives(s, t);
+        ASSERT_LE((d.point - n.ball.center).norm(), n.ball.radius) << "patch " << n.patch << " depth " << n.depth;
+        auto inside = [](const nurbs::Cone& c, const Vec& v) {
+          return c.all || v.norm() < 1e-12 || std::atan2(c.axis.cross(v).norm(), c.axis.dot(v)) <= c.angle;
+        };
+        ASSERT_TRUE(inside(n.cu, d.du)) << "Su outside its cone, patch " << n.patch << " depth " << n.depth;
+        ASSERT_TRUE(inside(n.cv, d.dv)) << "Sv outside its cone, patch " << n.patch << " depth " << n.depth;
+        ASSERT_TRUE(inside(n.normal, d.du.cross(d.dv))) << "normal outside its cone, patch " << n.patch << " depth " << n.depth;
+      }
+    if (n.depth < depth)
+      for (const nurbs::PatchNode* c : m.forest().children(n, arena)) visit(*c);
+  };
+  for (const auto& root : m.forest().roots) visit(*root);
+}
+
+TEST(NurbsTree, BallsAndConesAreConservative) {
+  checkNodesBySampling(*model(sphereSurface(), true), 3);
+  checkNodesBySampling(*model(torusSurface(), true), 3);
+  checkNodesBySampling(*model(wavySurface(), false), 3);
+}
+
+TEST(NurbsTree, NormalConesNarrowUnderSubdivision) {
+  // The test above cannot pass with cones that are always "all directions": require most deep nodes bounded.
+  const auto m = model(torusSurface(), true);
+  std::vector<std::unique_ptr<nurbs::PatchNode>> arena;
+  int bounded = 0, total = 0;
+  for (const auto& root : m->forest().roots)
+    for (const nurbs::PatchNode* c : m->forest().children(*root, arena))
+      for (const nurbs::PatchNode* g : m->forest().children(*c, arena)) {
+        ++total;
+        bounded += !g->normal.all && g->normal.angle < 0.6;
+      }
+  EXPECT_EQ(bounded, total);
+}
+
+// ---- closest point ----------------------------------------------------------------------------------------
+
+void expectConsistent(const NurbsModel& m, const Vec& q, const SurfacePoint& r) {
+  ASSERT_TRUE(r.point.allFinite() && r.normal.allFinite() && std::isfinite(r.signedDistance));
+  EXPECT_NEAR(std::abs(r.signedDistance), (q - r.point).norm(), 1e-12 * (1 + q.norm()));
+  EXPECT_NEAR(r.normal.norm(), 1, 1e-12);
+  const NurbsSurface& s = m.surfaces()[static_cast<std::size_t>(r.feature)];
+  EXPECT_LT((s.evaluate(r.param.x(), r.param.y()) - r.point).norm(), 1e-9 * (1 + r.point.norm()));
+}
+
+TEST(NurbsClosestPoint, SphereAgainstAnalyticTruth) {
+  for (double scale : {1e-4, 1.0, 1e4}) {
+    SCOPED_TRACE(scale);
+    const Vec c = scale * Vec(0.3, -0.2, 0.1);
+    const auto m = model(sphereSurface(scale, c), true);
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> U(-3 * scale, 3 * scale);
+    int misses = 0;
+    for (int k = 0; k < 4000; ++k) {
+      const Vec q = c + Vec(U(rng), U(rng), U(rng));
+      const SurfacePoint r = m->closestPoint(q);
+      expectConsistent(*m, q, r);
+      if (std::abs(r.signedDistance - sphereDistance(q, scale, c)) > 1e-10 * scale) ++misses;
+    }
+    EXPECT_EQ(misses, 0);
+  }
+}
+
+TEST(NurbsClosestPoint, TorusAgainstAnalyticTruth) {
+  const auto m = model(torusSurface(1.0, 0.25), true);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> U(-2, 2);
+  int misses = 0;
+  for (int k = 0; k < 10000; ++k) {
+    const Vec q(U(rng), U(rng), 0.5 * U(rng));
+    const SurfacePoint r = m->closestPoint(q);
+    expectConsistent(*m, q, r);
+    if (std::abs(r.signedDistance - torusDistance(q, 1.0, 0.25)) > 1e-10) ++misses;
+  }
+  EXPECT_EQ(misses, 0);
+}
+
+TEST(NurbsClosestPoint, DegeneratePlaces) {
+  const auto sphere = model(sphereSurface(), true);
+  // The centre: every point is closest. Any answer, distance −1, no NaN.
+  const SurfacePoint centre = sphere->closestPoint(Vec::Zero());
+  expectConsistent(*sphere, Vec::Zero(), centre);
+  EXPECT_NEAR(centre.signedDistance, -1, 1e-12);
+  // Poles (inside, outside, on), a seam point (u = 0 at y = 0, x > 0), a far point, near-centre points.
+  const Vec points[] = {Vec(0, 0, 0.5),  Vec(0, 0, -0.5), Vec(0, 0, 3),    Vec(0, 0, -1),   Vec(0, 0, 1),
+                        Vec(0.7, 0, 0.1), Vec(1.5, 0, -0.3), Vec(1, 0, 0), Vec(1e3, -2e3, 5e2), Vec(1e-7, 2e-7, -1e-7)};
+  for (const Vec& q : points) {
+    SCOPED_TRACE(q.transpose());
+    const SurfacePoint r = sphere->closestPoint(q);
+    expectConsistent(*sphere, q, r);
+    EXPECT_NEAR(r.signedDistance, sphereDistance(q, 1), 1e-12 * (1 + q.norm()));
+  }
+  EXPECT_NE(errorOf([&] { sphere->closestPoint(Vec(std::nan(""), 0, 0)); }).find("not finite"), std::string::npos);
+  const auto torus = model(torusSurface(1.0, 0.25), true);
+  const Vec torusPoints[] = {Vec(0, 0, 0), Vec(0, 0, 2), Vec(0, 0, -0.1), Vec(1, 0, 0), Vec(0, -1, 0), Vec(0.6, 0.8, 0),
+                             Vec(1.25, 0, 0), Vec(0, 0.75, 0), Vec(0, 1, 0.25)};
+  for (const Vec& q : torusPoints) {
+    SCOPED_TRACE(q.transpose());
+    const SurfacePoint r = torus->closestPoint(q);
+    expectConsistent(*torus, q, r);
+    EXPECT_NEAR(r.signedDistance, torusDistance(q, 1.0, 0.25), 1e-12);
+  }
+}
+
+TEST(NurbsClosestPoint, SignAndNormalFollowTheOutside) {
+  const auto sphere = model(sphereSurface(), true);
+  const SurfacePoint in = sphere->closestPoint(Vec(0.2, 0.3, -0.1)), out = sphere->closestPoint(Vec(1.2, 0.3, -0.1));
+  EXPECT_LT(in.signedDistance, 0);
+  EXPECT_GT(out.signedDistance, 0);
+  EXPECT_GT(in.normal.dot(in.point), 0.999);  // outward
+  EXPECT_GT(out.normal.dot(out.point), 0.999);
+  EXPECT_TRUE(sphere->inside(Vec(0, 0, 0.9)));
+  EXPECT_FALSE(sphere->inside(Vec(0, 0, 1.1)));
+  // An inward-oriented copy (u reversed) is detected and flipped: same signs.
+  const NurbsSurface s = sphereSurface();
+  Net reversed;
+  for (int i = s.countU() - 1; i >= 0; --i) {
+    reversed.emplace_back();
+    for (int j = 0; j < s.countV(); ++j) reversed.back().push_back(s.controlPoint(i, j));
+  }
+  const auto flipped = model(NurbsSurface(2, 2, circleKnots(), s.knotsV(), reversed), true);
+  EXPECT_EQ(flipped->orientation(), -1);
+  EXPECT_LT(flipped->closestPoint(Vec(0.2, 0.3, -0.1)).signedDistance, 0);
+  EXPECT_GT(flipped->closestPoint(Vec(1.2, 0.3, -0.1)).signedDistance, 0);
+  // An open model has unsigned distances.
+  const auto open = model(wavySurface(), false);
+  EXPECT_FALSE(open->isSolid());
+  EXPECT_GT(open->closestPoint(Vec(0, 0, -2)).signedDistance, 0);
+  EXPECT_FALSE(open->inside(Vec(0, 0, -2)));
+}
+
+/// Oracle for a surface without a closed form: nearest of a dense parameter grid, then projected Newton on the
+/// NURBS surface itself (a different path from the model: no Bézier patches, no tree).
+struct GridOracle {
+  const NurbsSurface& s;
+  std::vector<Vec> points;
+  std::vector<Eigen::Vector2d> params;
+  static constexpr int kN = 300;
+  explicit GridOracle(const NurbsSurface& surface) : s(surface) {
+    for (int i = 0; i <= kN; ++i)
+      for (int j = 0; j <= kN; ++j) {
+        const double u = s.uMin() + (s.uMax() - s.uMin()) * i / kN, v = s.vMin() + (s.vMax() - s.vMin()) * j / kN;
+        points.push_back(s.evaluate(u, v));
+        params.emplace_back(u, v);
+      }
+  }
+  double distance(const Vec& q) const {
+    std::size_t best = 0;
+    for (std::size_t k = 1; k < points.size(); ++k)
+      if ((points[k] - q).squaredNorm() < (points[best] - q).squaredNorm()) best = k;
+    Eigen::Vector2d x = params[best];
+    double value = (points[best] - q).norm();
+    for (int it = 0; it < 100; ++it) {
+      const SurfaceDerivatives d = s.derivatives(x[0], x[1]);
+      const Vec r = d.point - q;
+      Eigen::Matrix2d H;
+      H << d.du.dot(d.du) + r.dot(d.duu), d.du.dot(d.dv) + r.dot(d.duv), d.du.dot(d.dv) + r.dot(d.duv), d.dv.dot(d.dv) + r.dot(d.dvv);
+      const Eigen::Vector2d g(r.dot(d.du), r.dot(d.dv));
+      // A parameter at a bound of the domain whose gradient points outward stays there (edge minima).
+      const bool fixU = (x[0] <= s.uMin() && g[0] > 0) || (x[0] >= s.uMax() && g[0] < 0);
+      const bool fixV = (x[1] <= s.vMin() && g[1] > 0) || (x[1] >= s.vMax() && g[1] < 0);
+      Eigen::Vector2d step = H.determinant() > 0 && H(0, 0) > 0 ? Eigen::Vector2d(-H.inverse() * g) : Eigen::Vector2d(-g / (H.trace() + 1));
+      if (fixU || fixV) {
+        const int k = fixU ? 1 : 0;
+        step.setZero();
+        if (!(fixU && fixV)) step[k] = -g[k] / (H(k, k) > 0 ? H(k, k) : std::abs(H(k, k)) + 1);
+      }
+      bool improved = false;
+      for (int h = 0; h < 30 && !improved; ++h, step *= 0.5) {
+        Eigen::Vector2d y = x + step;
+        y[0] = std::clamp(y[0], s.uMin(), s.uMax());
+        y[1] = std::clamp(y[1], s.vMin(), s.vMax());
+        const double vy = (s.evaluate(y[0], y[1]) - q).norm();
+        if (vy < value) {
+          value = vy;
+          x = y;
+          improved = true;
+        }
+      }
+      if (!improved) break;
+    }
+    return value;
+  }
+};
+
+TEST(NurbsClosestPoint, WavyPatchAgainstDenseSamplingOracle) {
+  const NurbsSurface surface = wavySurface();
+  const auto m = model(surface, false);
+  const GridOracle oracle(surface);
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> U(-1.6, 1.6);
+  int misses = 0, oracleWorse = 0;
+  for (int k = 0; k < 1500; ++k) {
+    // Near the surface (where the waves make several local minima) and around its boundary.
+    const Vec q(U(rng), U(rng), 0.4 * U(rng));
+    const SurfacePoint r = m->closestPoint(q);
+    expectConsistent(*m, q, r);
+    const double truth = oracle.distance(q);
+    if (r.signedDistance > truth + 1e-10) ++misses;
+    if (r.signedDistance < truth - 1e-10) {  // the oracle polished a local minimum: not the model's fault
+      ++oracleWorse;
+    }
+  }
+  EXPECT_EQ(misses, 0);
+  EXPECT_LE(oracleWorse, 3);
+}
+
+TEST(NurbsClosestPoint, ConcurrentQueriesAgree) {
+  const auto m = model(torusSurface(), true);
+  std::vector<Vec> qs;
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> U(-1.5, 1.5);
+  for (int k = 0; k < 400; ++k) qs.emplace_back(U(rng), U(rng), U(rng));
+  std::vector<double> a(qs.size()), b(qs.size());
+  std::thread t1([&] { for (std::size_t k = 0; k < qs.size(); ++k) a[k] = m->closestPoint(qs[k]).signedDistance; });
+  std::thread t2([&] { for (std::size_t k = qs.size(); k-- > 0;) b[k] = m->closestPoint(qs[k]).signedDistance; });
+  t1.join();
+  t2.join();
+  for (std::size_t k = 0; k < qs.size(); ++k) EXPECT_NEAR(a[k], b[k], 1e-12);
+}
+
+// ---- the rest of the Model interface ----------------------------------------------------------------------
+
+TEST(NurbsModel, SupportBoundsAndCells) {
+  const auto torus = model(torusSurface(1.0, 0.25), true);
+  std::mt19937 rng(9);
+  std::normal_distribution<double> N;
+  for (int k = 0; k < 200; ++k) {
+    const Vec d(N(rng), N(rng), N(rng));
+    const Vec u = d.normalized();
+    const double truth = 1.0 * std::hypot(u.x(), u.y()) + 0.25;  // support value of the torus along u
+    const Vec p = torus->support(d);
+    EXPECT_NEAR(u.dot(p), truth, 1e-11);
+    EXPECT_NEAR(torusDistance(p, 1.0, 0.25), 0, 1e-12);  // a point of the surface
+  }
+  // Poles of the sphere are extreme points on a collapsed edge; the support there is still exact.
+  const auto sphere = model(sphereSurface(2.0, Vec(1, 1, 1)), true);
+  for (const Vec& d : {Vec(0, 0, 1), Vec(0, 0, -3), Vec(1e-3, 0, 1), Vec(0.3, -0.2, 0.9)})
+    EXPECT_NEAR(d.normalized().dot(sphere->support(d) - Vec(1, 1, 1)), 2.0, 1e-12);
+  // Bounds hold every surface point (conservative for a free-form patch).
+  const NurbsSurface wavy = wavySurface();
+  const Aabb wb = model(wavy, false)->localBounds();
+  for (int i = 0; i <= 50; ++i)
+    for (int j = 0; j <= 50; ++j) EXPECT_EQ(wb.distanceTo(wavy.evaluate(i / 50.0, j / 50.0)), 0.0);
+  const Aabb b = torus->localBounds();
+  EXPECT_NEAR((b.max - Vec(1.25, 1.25, 0.25)).norm(), 0, 1e-11);
+  EXPECT_NEAR((b.min + Vec(1.25, 1.25, 0.25)).norm(), 0, 1e-11);
+
+  // Cells: a sample on the surface, every surface point of a cell in its ball, children cover their parent.
+  std::vector<SurfaceCell> cells = torus->surfaceCells();
+  EXPECT_EQ(cells.size(), torus->patches().size());
+  for (int level = 0; level < 3; ++level) {
+    std::vector<SurfaceCell> next;
+    for (const SurfaceCell& c : cells) {
+      EXPECT_NEAR(torusDistance(c.sample, 1.0, 0.25), 0, 1e-12);
+      const RationalBezierPatch& P = torus->patches()[static_cast<std::size_t>(c.face)];
+      for (int i = 0; i <= 6; ++i)
+        for (int j = 0; j <= 6; ++j) {
+          const Vec x = P.evaluate(c.u0 + (c.u1 - c.u0) * i / 6, c.v0 + (c.v1 - c.v0) * j / 6);
+          EXPECT_LE((x - c.center).norm(), c.radius);
+        }
+      const std::size_t before = next.size();
+      torus->splitCell(c, next);
+      EXPECT_EQ(next.size() - before, 4u);
+      double area = 0;
+      for (std::size_t k = before; k < next.size(); ++k) area += (next[k].u1 - next[k].u0) * (next[k].v1 - next[k].v0);
+      EXPECT_NEAR(area, (c.u1 - c.u0) * (c.v1 - c.v0), 1e-15);
+      EXPECT_LT(next[before].radius, c.radius);
+    }
+    cells = std::move(next);
+  }
+  EXPECT_NE(torus->describe().find("16 rational Bezier patches"), std::string::npos);
+  EXPECT_GT(torus->memoryBytes(), 16 * sizeof(RationalBezierPatch));
+  EXPECT_EQ(torus->type(), ModelType::Nurbs);
+}
+
+TEST(NurbsModel, SolidMustBeClosed) {
+  // Half of the sphere (u in [0, 0.5]) is open: fine as an open model, an error as a solid.
+  const NurbsSurface s = sphereSurface();
+  Net half;
+  for (int i = 0; i <= 4; ++i) {
+    half.emplace_back();
+    for (int j = 0; j < s.countV(); ++j) half.back().push_back(s.controlPoint(i, j));
+  }
+  const NurbsSurface h(2, 2, {0, 0, 0, .5, .5, 1, 1, 1}, s.knotsV(), half);
+  EXPECT_NO_THROW(model(h, false));
+  EXPECT_NE(errorOf([&] { model(h, true); }).find("not closed"), std::string::npos);
+  EXPECT_NE(errorOf([&] { NurbsModel(std::vector<NurbsSurface>{}, false); }).find("at least one surface"), std::string::npos);
+  // The torus and the sphere close up (seams and poles allowed).
+  EXPECT_NO_THROW(model(torusSurface(), true));
+  EXPECT_NO_THROW(model(sphereSurface(1e-4), true));
+}
+
+}  // namespace
+}  // namespace unidist
