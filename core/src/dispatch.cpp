@@ -6,6 +6,8 @@
 #include "pairs/box_box.h"
 #include "pairs/mesh_convex.h"
 #include "pairs/mesh_mesh.h"
+#include "pairs/nurbs_convex.h"
+#include "pairs/nurbs_nurbs.h"
 #include "pairs/torus_pairs.h"
 #include "unidist/primitives.h"
 
@@ -125,6 +127,11 @@ DistanceResult dispatchByShape(const PosedModel& a, const PosedModel& b, const Q
   if (a.model.isConvex() && b.model.isConvex()) return convexPair(a, b, ctx);
   if (a.model.type() == ModelType::Mesh && b.model.isConvex()) return meshConvex(a, b, ctx, &convexPair);
   if (b.model.type() == ModelType::Mesh && a.model.isConvex()) return swapped(meshConvex(b, a, ctx, &convexPair));
+  const bool nurbsA = a.model.type() == ModelType::Nurbs && a.model.isSolid();
+  const bool nurbsB = b.model.type() == ModelType::Nurbs && b.model.isSolid();
+  if (nurbsA && nurbsB) return nurbsNurbs(a, b, ctx);
+  if (nurbsA && b.model.isConvex()) return nurbsConvex(a, b, ctx);
+  if (nurbsB && a.model.isConvex()) return swapped(nurbsConvex(b, a, ctx));
   return genericPair(a, b, ctx);
 }
 

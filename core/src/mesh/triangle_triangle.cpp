@@ -1,14 +1,64 @@
 #include "mesh/triangle_triangle.h"
 
-#include "convex/segments.h"
 #include "mesh/point_triangle.h"
 
 #include <Eigen/Geometry>
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace unidist::mesh {
+namespace {
+
+constexpr double kEps = std::numeric_limits<double>::epsilon();
+
+// Whether the lines of [p1, q1] and [p2, q2] are provably at least sqrt(limitSq) apart: |r·m| / |m| with
+// m = d1 × d2, each side widened by a bound on its rounding error (so near-parallel edges are never skipped
+// on a garbage direction). No square root: both sides are compared squared.
+bool linesApart(const Eigen::Vector3d& p1, const Eigen::Vector3d& q1, const Eigen::Vector3d& p2,
+                const Eigen::Vector3d& q2, double limitSq) {
+  const Eigen::Vector3d d1 = q1 - p1, d2 = q2 - p2, r = p2 - p1;
+  const Eigen::Vector3d m = d1.cross(d2);
+  const double k = d1.lpNorm<1>() * d2.lpNorm<1>();  // bounds |m| and each |m_i|'s scale
+  const double num = std::abs(r.dot(m)) - 32 * kEps * r.lpNorm<1>() * k;
+  if (!(num > 0)) return false;
+  const double e = 16 * kEps * k;
+  const double den2 = m.squaredNorm() + 2 * e * k + e * e;  // ≥ (|m| + e)², as |m| ≤ k
+  return num * num >= limitSq * den2 * (1 + 8 * kEps);
+}
+
+// Closest points of the edges' lines when they lie inside both edges (x1 on [p1, q1], x2 on [p2, q2]); false
+// for parallel or degenerate edges and when either falls outside, where an endpoint is a closest point. The
+// critical point is found by Gram–Schmidt against the longer edge, which stays accurate for near-parallel ones.
+bool interiorEdgeEdge(const Eigen::Vector3d& p1, const Eigen::Vector3d& q1, const Eigen::Vector3d& p2,
+                      const Eigen::Vector3d& q2, Eigen::Vector3d& x1, Eigen::Vector3d& x2) {
+  const Eigen::Vector3d d1 = q1 - p1, d2 = q2 - p2;
+  const double n1 = d1.squaredNorm(), n2 = d2.squaredNorm();
+  if (!(n1 > 0 && n2 > 0)) return false;
+  const bool firstLonger = n1 >= n2;
+  const Eigen::Vector3d& pL = firstLonger ? p1 : p2;
+  const Eigen::Vector3d& pS = firstLonger ? p2 : p1;
+  const Eigen::Vector3d& dL = firstLonger ? d1 : d2;
+  const Eigen::Vector3d& dS = firstLonger ? d2 : d1;
+  const double nL = firstLonger ? n1 : n2;
+  const Eigen::Vector3d u = dL / std::sqrt(nL);
+  Eigen::Vector3d w = dS - dS.dot(u) * u;
+  w -= w.dot(u) * u;
+  const double ww = w.squaredNorm();
+  if (!(ww > 0)) return false;
+  const Eigen::Vector3d rr = pS - pL;
+  const double t = -(rr - rr.dot(u) * u).dot(w) / ww;  // on the shorter edge
+  if (!(t >= 0 && t <= 1)) return false;
+  const double s = (rr + t * dS).dot(dL) / nL;  // on the longer edge
+  if (!(s >= 0 && s <= 1)) return false;
+  const Eigen::Vector3d xL = pL + s * dL, xS = pS + t * dS;
+  x1 = firstLonger ? xL : xS;
+  x2 = firstLonger ? xS : xL;
+  return true;
+}
+
+}  // namespace
 
 bool segmentCrossesTriangle(const Eigen::Vector3d& p, const Eigen::Vector3d& q, const Eigen::Vector3d* t,
                             const Eigen::Vector3d& n, Eigen::Vector3d& x) {
@@ -89,23 +139,32 @@ TriangleTriangleClosest closestTriangleTriangle(const Eigen::Vector3d* a, const 
       }
     }
   }
-  double best = found ? std::sqrt(bestSq) : std::numeric_limits<double>::infinity();
-  if (best > 0) {
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) {
-        const Eigen::Vector3d &p1 = a[i], &q1 = a[(i + 1) % 3], &p2 = b[j], &q2 = b[(j + 1) % 3];
-        const Eigen::Vector3d gap =
-            (p2.cwiseMin(q2) - p1.cwiseMax(q1)).cwiseMax(p1.cwiseMin(q1) - p2.cwiseMax(q2)).cwiseMax(0.0);
-        const double g2 = gap.squaredNorm();
-        if (g2 >= best * best || g2 >= cutoffSq) continue;
-        const detail::SegmentSegmentClosest s = detail::closestSegmentSegment(p1, q1, p2, q2);
-        if (s.distance < best) {
-          best = s.distance;
-          r.pointA = s.point1;
-          r.pointB = s.point2;
-        }
-      }
+  // Edges: a closest pair with an endpoint is a vertex–triangle pair measured above (or skipped for being no
+  // nearer), so only interior edge–edge critical points remain. Each is filtered by the gap of the edges'
+  // boxes, then by the distance between the edges' lines with its rounding error allowed for.
+  if (!(bestSq > 0)) {
+    r.distance = found ? std::sqrt(bestSq) : std::numeric_limits<double>::infinity();
+    return r;
   }
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      const Eigen::Vector3d &p1 = a[i], &q1 = a[(i + 1) % 3], &p2 = b[j], &q2 = b[(j + 1) % 3];
+      const double limit = std::min(bestSq, cutoffSq);
+      const Eigen::Vector3d gap =
+          (p2.cwiseMin(q2) - p1.cwiseMax(q1)).cwiseMax(p1.cwiseMin(q1) - p2.cwiseMax(q2)).cwiseMax(0.0);
+      if (gap.squaredNorm() >= limit) continue;
+      if (linesApart(p1, q1, p2, q2, limit)) continue;
+      Eigen::Vector3d x1, x2;
+      if (!interiorEdgeEdge(p1, q1, p2, q2, x1, x2)) continue;
+      const double d2 = (x1 - x2).squaredNorm();
+      if (d2 < bestSq) {
+        bestSq = d2;
+        r.pointA = x1;
+        r.pointB = x2;
+        found = true;
+      }
+    }
+  const double best = found ? std::sqrt(bestSq) : std::numeric_limits<double>::infinity();
   r.distance = best;
   return r;
 }

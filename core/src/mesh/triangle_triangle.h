@@ -1,8 +1,9 @@
 // Exact closest points between two triangles (internal). Disjoint triangles: the minimum over the 6
 // vertex–triangle and 9 edge–edge distances (Ericson, "Real-Time Collision Detection" §5.2.4: for two
-// disjoint triangles a closest pair always has one point at a vertex or both on edges). Intersecting
-// triangles (an edge of one crossing the other outside their common plane) give distance 0 with a point on
-// the intersection; coplanar overlaps give 0 through the features themselves.
+// disjoint triangles a closest pair always has one point at a vertex or both on edges; an edge pair whose
+// closest points include an endpoint is a vertex pair already, so only interior edge–edge points are solved).
+// Intersecting triangles (an edge of one crossing the other outside their common plane) give distance 0 with a
+// point on the intersection; coplanar overlaps give 0 through the features themselves.
 #pragma once
 
 #include <Eigen/Core>

@@ -92,25 +92,11 @@ DistanceResult meshConvex(const PosedModel& a, const PosedModel& b, const QueryC
     if (!mesh.isSolid()) return genericPair(a, b, ctx);
     DistanceResult r = translationalDepth(a, b, ctx, seedOverlap(a, b, ctx));
     r.iterations += c.iterations;
-    if (meet) r.upperBound = std::min(r.upperBound, 0.0);  // the surfaces meet: distance <= 0 is proved
-    r.lowerBound = std::min(r.lowerBound, r.upperBound);
-    r.distance = std::clamp(r.distance, r.lowerBound, r.upperBound);
-    settleStatus(r, ctx.tolerance);
+    if (meet) capAtContact(r, ctx.tolerance);
     return r;
   }
-
-  DistanceResult r;
-  r.method = "mesh-convex-bvh-gjk";
-  r.iterations = c.iterations;
-  r.pointA = a.toWorld(c.pA);
-  r.pointB = a.toWorld(c.pB);
-  const Eigen::Vector3d gap = r.pointB - r.pointA;
-  r.distance = gap.norm();
-  r.normal = r.distance > 0 ? Eigen::Vector3d(gap / r.distance) : a.dirToWorld(Eigen::Vector3d::UnitZ());
-  r.upperBound = r.distance;
-  r.lowerBound = std::min({lowerOpen, c.lowerOfClosed, r.distance});
-  settleStatus(r, ctx.tolerance);
-  return r;
+  return separationFromPoints(a, c.pA, c.pB, Eigen::Vector3d::UnitZ(), std::min(lowerOpen, c.lowerOfClosed),
+                              c.iterations, "mesh-convex-bvh-gjk", ctx.tolerance);
 }
 
 }  // namespace unidist::detail

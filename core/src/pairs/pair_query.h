@@ -3,6 +3,8 @@
 
 #include "unidist/distance.h"
 
+#include <algorithm>
+
 namespace unidist::detail {
 
 /// A model placed in the world; converts points and directions between the world W and the model frame M.
@@ -57,6 +59,33 @@ inline DistanceResult swapped(DistanceResult r) {
 /// Fills status from the bounds and the tolerance.
 inline void settleStatus(DistanceResult& r, double tolerance) {
   r.status = (r.upperBound - r.lowerBound <= tolerance) ? Status::Certified : Status::Bounded;
+}
+
+/// A separation answer from the closest points pA_M, pB_M found in a's frame, with a proved lower bound;
+/// `touchNormal_M` (a's frame) is the normal used if the points coincide.
+inline DistanceResult separationFromPoints(const PosedModel& a, const Eigen::Vector3d& pA_M, const Eigen::Vector3d& pB_M,
+                                           const Eigen::Vector3d& touchNormal_M, double lowerBound, int iterations,
+                                           const char* method, double tolerance) {
+  DistanceResult r;
+  r.method = method;
+  r.iterations = iterations;
+  r.pointA = a.toWorld(pA_M);
+  r.pointB = a.toWorld(pB_M);
+  const Eigen::Vector3d gap = r.pointB - r.pointA;
+  r.distance = gap.norm();
+  r.normal = r.distance > 0 ? Eigen::Vector3d(gap / r.distance) : a.dirToWorld(touchNormal_M);
+  r.upperBound = r.distance;
+  r.lowerBound = std::min(lowerBound, r.distance);
+  settleStatus(r, tolerance);
+  return r;
+}
+
+/// A depth answer for solids whose surfaces are proved to meet: distance <= 0 holds, whatever the search said.
+inline void capAtContact(DistanceResult& r, double tolerance) {
+  r.upperBound = std::min(r.upperBound, 0.0);
+  r.lowerBound = std::min(r.lowerBound, r.upperBound);
+  r.distance = std::clamp(r.distance, r.lowerBound, r.upperBound);
+  settleStatus(r, tolerance);
 }
 
 /// A unit vector orthogonal to v (any; deterministic).

@@ -1,0 +1,179 @@
+#include "pairs/nurbs_convex.h"
+
+#include "convex/gjk.h"
+#include "generic/translation_depth.h"
+#include "nurbs/patch_tree.h"
+#include "unidist/nurbs.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <queue>
+#include <vector>
+
+namespace unidist::detail {
+
+namespace {
+
+// GJK on a control-point hull and a primitive converges in a few iterations; the cap guards degenerate input.
+constexpr int kNodeGjkCap = 200;
+// Subdivision stops here (node size ~2^-40 of a patch): rounding, not the bound, limits deeper nodes.
+constexpr int kMaxDepth = 40;
+// Nodes popped before the search reports a bounded answer.
+constexpr int kNodeBudget = 200000;
+// Descent steps polishing the deepest point of the convex solid inside the NURBS solid (two point queries each).
+constexpr int kDeepenSteps = 200;
+
+struct OpenNode {
+  double lower;
+  const nurbs::PatchNode* node;
+  Eigen::Vector3d witnessB;  // GJK's closest point of B to the node's hull (A's frame)
+  bool hullApart;
+  bool operator>(const OpenNode& o) const { return lower > o.lower; }
+};
+
+struct Search {
+  double best = std::numeric_limits<double>::infinity();  // realised: signed distance of a surface point to B
+  Eigen::Vector3d pA = Eigen::Vector3d::Zero(), pB = Eigen::Vector3d::Zero(), nB = Eigen::Vector3d::UnitZ();
+  double lowerOfClosed = std::numeric_limits<double>::infinity();  // nodes not split further (depth cap)
+  double lowerOpen = std::numeric_limits<double>::infinity();
+  int iterations = 0;
+};
+
+class NodeBounds {
+ public:
+  NodeBounds(const PosedModel& bInA, double tolerance)
+      : bInA_(bInA), tolerance_(tolerance),
+        supportB_([&bInA](const Eigen::Vector3d& d) { return bInA.supportWorld(d); }) {}
+
+  /// Proved lower bound on the distance from the subpatch to B: GJK on its control-point hull, less the
+  /// rounding of the subdivided net (the same 256 ulps the node's ball is widened by).
+  double lower(const nurbs::PatchNode& n, int& iterations) {
+    // A node whose ball centre lies in B has its hull overlapping B: skip GJK (it would run EPA) and use the
+    // first-order ball bound (the signed distance is 1-Lipschitz).
+    const double atCentre = bInA_.closestWorld(n.ball.center).signedDistance;
+    if (atCentre <= 0) {
+      lastHullApart_ = false;
+      return atCentre - n.ball.radius;
+    }
+    points_.clear();
+    for (const Eigen::Vector4d& h : n.net.net) points_.push_back(h.head<3>() / h[3]);
+    const SupportFn hull = [this](const Eigen::Vector3d& d) {
+      std::size_t k = 0;
+      double top = -std::numeric_limits<double>::infinity();
+      for (std::size_t i = 0; i < points_.size(); ++i)
+        if (const double v = d.dot(points_[i]); v > top) top = v, k = i;
+      return points_[k];
+    };
+    const ConvexDistance c = convexDistance(hull, supportB_, 0.25 * tolerance_, kNodeGjkCap);
+    iterations += c.iterations;
+    lastWitnessB_ = c.pointB;
+    lastHullApart_ = c.distance > 0;
+    const double margin = 256 * std::numeric_limits<double>::epsilon() * (n.ball.center.norm() + n.ball.radius);
+    return std::min(c.lowerBound, c.distance) - margin;
+  }
+  const Eigen::Vector3d& lastWitnessB() const { return lastWitnessB_; }
+  bool lastHullApart() const { return lastHullApart_; }
+
+  /// Measures a realised surface point against B; keeps the best.
+  void measure(const Eigen::Vector3d& onA, Search& s) const {
+    const SurfacePoint q = bInA_.closestWorld(onA);
+    if (q.signedDistance < s.best) {
+      s.best = q.signedDistance;
+      s.pA = onA;
+      s.pB = q.point;
+      s.nB = q.normal;
+    }
+  }
+
+ private:
+  const PosedModel& bInA_;
+  double tolerance_;
+  SupportFn supportB_;
+  std::vector<Eigen::Vector3d> points_;
+  Eigen::Vector3d lastWitnessB_ = Eigen::Vector3d::Zero();
+  bool lastHullApart_ = false;
+};
+
+/// Best-first search in A's frame; stops once a surface point of A is inside B (the solids overlap).
+Search closestSubpatch(const NurbsModel& m, const PosedModel& bInA, double tolerance) {
+  NodeBounds bounds(bInA, tolerance);
+  Search s;
+  std::vector<std::unique_ptr<nurbs::PatchNode>> arena;
+  std::priority_queue<OpenNode, std::vector<OpenNode>, std::greater<OpenNode>> open;
+  auto visit = [&](const nurbs::PatchNode* n) {
+    for (const Eigen::Vector3d& c : n->corners) bounds.measure(c, s);
+    const double lower = bounds.lower(*n, s.iterations);
+    open.push({lower, n, bounds.lastWitnessB(), bounds.lastHullApart()});
+  };
+  for (const auto& root : m.forest().roots) visit(root.get());
+  int popped = 0;
+  while (!open.empty()) {
+    const OpenNode top = open.top();
+    if (top.lower >= s.best - 0.5 * tolerance || s.best < 0 || popped >= kNodeBudget) break;
+    open.pop();
+    ++popped;
+    ++s.iterations;
+    if (top.node->depth >= kMaxDepth) {
+      s.lowerOfClosed = std::min(s.lowerOfClosed, top.lower);
+      continue;
+    }
+    // A second-order upper bound: the surface point closest to B's witness for this hull.
+    if (top.hullApart) bounds.measure(m.closestPoint(top.witnessB).point, s);
+    for (const nurbs::PatchNode* c : m.forest().children(*top.node, arena)) visit(c);
+  }
+  if (!open.empty()) s.lowerOpen = open.top().lower;
+  return s;
+}
+
+/// The deepest point of B's surface inside A, polished by projected descent of A's signed distance over B's
+/// surface from the seed's point (its gradient is A's outward normal). Every value is realised (a point of B's
+/// surface that deep in A must travel that far to get out), so the improved depth stays a proved lower bound;
+/// the seed's short surface search is first order and stops far from the deepest value.
+void deepenSeed(const PosedModel& a, const PosedModel& b, double tolerance, OverlapSeed& seed) {
+  Eigen::Vector3d p = b.closestWorld(seed.deepPoint).point;
+  SurfacePoint inA = a.closestWorld(p);
+  double step = std::max(seed.provedDepth, tolerance);
+  for (int k = 0; k < kDeepenSteps && step > 1e-3 * tolerance; ++k) {
+    const Eigen::Vector3d q = b.closestWorld(p - step * inA.normal).point;
+    const SurfacePoint atQ = a.closestWorld(q);
+    if (atQ.signedDistance < inA.signedDistance) {
+      p = q;
+      inA = atQ;
+      step *= 1.5;
+    } else {
+      step *= 0.5;
+    }
+  }
+  if (-inA.signedDistance > seed.provedDepth) {
+    seed.provedDepth = -inA.signedDistance;
+    seed.deepPoint = p;
+    seed.direction = inA.normal;  // the way B leaves
+  }
+}
+
+}  // namespace
+
+DistanceResult nurbsConvex(const PosedModel& a, const PosedModel& b, const QueryContext& ctx) {
+  const auto& m = static_cast<const NurbsModel&>(a.model);
+  const PosedModel bInA{b.model, a.X_WM.inverse() * b.X_WM};
+  const Search s = closestSubpatch(m, bInA, ctx.tolerance);
+
+  // Apart surfaces overlap only by containment: of B in A (any point of B) or of A in B (any point of A).
+  const bool meet = s.best < 0;
+  const bool contained = !meet && (m.inside(bInA.supportWorld(Eigen::Vector3d::UnitX())) ||
+                                   b.model.inside(bInA.toLocal(m.forest().roots.front()->corners[0])));
+  if (meet || contained) {
+    if (ctx.overlapVerdictOnly) return overlapVerdict();
+    OverlapSeed seed = seedOverlap(a, b, ctx);
+    deepenSeed(a, b, ctx.tolerance, seed);
+    DistanceResult r = translationalDepth(a, b, ctx, seed);
+    r.iterations += s.iterations;
+    capAtContact(r, ctx.tolerance);  // the interiors meet: distance <= 0 is proved
+    return r;
+  }
+  return separationFromPoints(a, s.pA, s.pB, -s.nB, std::min(s.lowerOpen, s.lowerOfClosed), s.iterations,
+                              "nurbs-convex-tree-gjk", ctx.tolerance);
+}
+
+}  // namespace unidist::detail
