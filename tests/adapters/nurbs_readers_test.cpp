@@ -2,6 +2,7 @@
 // of malformed file rejected with an InputError naming the file and the JSON path, byte or line of the problem.
 #include "../core/nurbs_fixtures.h"
 #include "error_of.h"
+#include "scratch_files.h"
 #include "unidist/adapters/load.h"
 #include "unidist/nurbs.h"
 
@@ -70,31 +71,12 @@ std::string replaceOnce(std::string text, const std::string& from, const std::st
   return text;
 }
 
-class NurbsReaders : public ::testing::Test {
+class NurbsReaders : public unidist::testing::ScratchFiles {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("unidist_nurbs_readers_" + std::to_string(::getpid()));
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
-  std::string write(const std::string& name, const std::string& contents) {
-    const fs::path p = dir_ / name;
-    std::ofstream(p, std::ios::binary) << contents;
-    return p.string();
-  }
-
-  /// Loading `contents` as `name` fails with a one-line message starting "<path>" + `where` and holding `fragment`.
   void expectError(const std::string& name, const std::string& contents, const std::string& where,
                    const std::string& fragment) {
-    const std::string path = write(name, contents);
-    const std::string msg = errorOf([&] { loadModel(path); });
-    EXPECT_EQ(msg.rfind(path + where, 0), 0u) << "message: '" << msg << "'\nexpected to start with: '" << path + where << "'";
-    EXPECT_NE(msg.find(fragment), std::string::npos) << "message: '" << msg << "'\nexpected: '" << fragment << "'";
-    EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
+    expectLoadError(name, contents, where, fragment);
   }
-
-  fs::path dir_;
 };
 
 // ------------------------------------------------------------------------------------------- .unurbs.json

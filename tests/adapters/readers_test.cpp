@@ -4,6 +4,7 @@
 // "Model files" and "Bad input"). Fixture files are written by the tests into a scratch directory; the shared
 // acceptance models and FCL's env/rob meshes are loaded when ../shared is present.
 #include "error_of.h"
+#include "scratch_files.h"
 #include "unidist/adapters/load.h"
 #include "unidist/mesh.h"
 #include "unidist/point_cloud.h"
@@ -99,43 +100,18 @@ void expectUnitCube(const std::shared_ptr<const Model>& model) {
   for (const Eigen::Vector3d& v : m.vertices()) EXPECT_EQ(v.cwiseAbs(), Eigen::Vector3d::Constant(0.5));
 }
 
-/// A scratch directory for this test binary, removed at the end of each test.
-class Readers : public ::testing::Test {
+class Readers : public unidist::testing::ScratchFiles {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("unidist_readers_test_" + std::to_string(::getpid()));
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
-  std::string write(const std::string& name, const std::string& contents) {
-    const fs::path p = dir_ / name;
-    std::ofstream(p, std::ios::binary) << contents;
-    return p.string();
-  }
-
   /// Loading `contents` as `name` fails with "<path>:<line>: ..." containing `fragment`.
   void expectLineError(const std::string& name, const std::string& contents, int line, const std::string& fragment) {
-    const std::string path = write(name, contents);
-    const std::string msg = errorOf([&] { loadModel(path); });
-    const std::string where = path + ":" + std::to_string(line) + ": ";
-    EXPECT_EQ(msg.rfind(where, 0), 0u) << "message: '" << msg << "'\nexpected to start with: '" << where << "'";
-    EXPECT_NE(msg.find(fragment), std::string::npos) << "message: '" << msg << "'\nexpected: '" << fragment << "'";
-    EXPECT_EQ(msg.find('\n'), std::string::npos) << "message must be one line: " << msg;
+    expectLoadError(name, contents, ":" + std::to_string(line) + ": ", fragment);
   }
 
   /// Loading `contents` as `name` fails with "<path>: byte <offset>: ..." containing `fragment`.
   void expectByteError(const std::string& name, const std::string& contents, std::size_t offset,
                        const std::string& fragment) {
-    const std::string path = write(name, contents);
-    const std::string msg = errorOf([&] { loadModel(path); });
-    const std::string where = path + ": byte " + std::to_string(offset) + ": ";
-    EXPECT_EQ(msg.rfind(where, 0), 0u) << "message: '" << msg << "'\nexpected to start with: '" << where << "'";
-    EXPECT_NE(msg.find(fragment), std::string::npos) << "message: '" << msg << "'\nexpected: '" << fragment << "'";
-    EXPECT_EQ(msg.find('\n'), std::string::npos) << "message must be one line: " << msg;
+    expectLoadError(name, contents, ": byte " + std::to_string(offset) + ": ", fragment);
   }
-
-  fs::path dir_;
 };
 
 // ---------------------------------------------------------------------------------------------------- OBJ

@@ -6,6 +6,8 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "run_unidist.h"
+
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -23,36 +25,8 @@
 namespace {
 
 using nlohmann::json;
-
-struct Outcome {
-  int exitCode = -1;
-  std::string out, err;
-};
-
-std::string slurp(const std::string& path) {
-  std::ifstream f(path, std::ios::binary);
-  std::stringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
-
-/// Runs the binary through the shell with stdout and stderr sent to separate files (every argument is
-/// single-quoted; the tests use no quotes inside arguments).
-Outcome run(const std::vector<std::string>& args) {
-  static int counter = 0;
-  const std::string base = "contacts_cli_" + std::to_string(::getpid()) + "_" + std::to_string(counter++);
-  std::string cmd = std::string("'") + UNIDIST_EXE + "'";
-  for (const std::string& a : args) cmd += " '" + a + "'";
-  cmd += " </dev/null >" + base + ".out 2>" + base + ".err";
-  const int status = std::system(cmd.c_str());
-  Outcome r;
-  r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  r.out = slurp(base + ".out");
-  r.err = slurp(base + ".err");
-  std::remove((base + ".out").c_str());
-  std::remove((base + ".err").c_str());
-  return r;
-}
+using unidist::testing::Outcome;
+using unidist::testing::run;
 
 Eigen::Vector3d vec(const json& j) { return {j.at(0).get<double>(), j.at(1).get<double>(), j.at(2).get<double>()}; }
 
