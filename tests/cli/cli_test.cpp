@@ -8,11 +8,8 @@
 
 #include "run_unidist.h"
 
-#include <poll.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
-#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -21,10 +18,6 @@
 #include <regex>
 #include <string>
 #include <vector>
-
-#ifndef UNIDIST_EXE
-#error "UNIDIST_EXE must name the unidist binary"
-#endif
 
 namespace {
 

@@ -8,19 +8,8 @@
 
 #include "run_unidist.h"
 
-#include <sys/wait.h>
-#include <unistd.h>
-
-#include <cstdio>
-#include <cstdlib>
-#include <fstream>
-#include <sstream>
 #include <string>
 #include <vector>
-
-#ifndef UNIDIST_EXE
-#error "UNIDIST_EXE must name the unidist binary"
-#endif
 
 namespace {
 

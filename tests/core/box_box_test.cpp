@@ -10,6 +10,7 @@
 //    the value makes every accepted plane, even one with a rounding-blurred normal, an upper bound on the depth,
 //    and the true facets are among them: the oracle is exact to rounding;
 //  * a dense set of directions: the overlap along any direction is >= the depth (a weaker, separate check).
+#include "core/case_budget.h"
 #include "pairs/box_box.h"
 
 #include <gtest/gtest.h>
@@ -34,22 +35,7 @@ using unidist::detail::ConvexDistance;
 using unidist::detail::convexDistance;
 using unidist::detail::SupportFn;
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
-constexpr double kPi = 3.14159265358979323846;
-
-// Random-case counts are divided by kReduce in debug builds (unoptimised Eigen is ~50x slower), never to none.
-#ifdef NDEBUG
-constexpr int kReduce = 1;
-#else
-constexpr int kReduce = 10;
-#endif
-int cases(int n) { return std::max(n / kReduce, 2); }
-
-std::string sci(double x) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.3g", x);
-  return buf;
-}
+using namespace unidist::testing;
 
 struct Box {
   Vector3d h;

@@ -12,6 +12,7 @@
 //    proved lower bound, so "oracle <= upperBound" is exact, and "distance − h-bound along the reported
 //    normal <= tol" certifies the reported value from below.
 // Tolerances are stated at each check with the reason; "size" is the size of the pair (sum of diameters).
+#include "core/case_budget.h"
 #include "convex/gjk.h"
 #include "convex/segments.h"
 
@@ -40,22 +41,7 @@ using unidist::detail::ConvexDistance;
 using unidist::detail::convexDistance;
 using unidist::detail::SupportFn;
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
-constexpr double kPi = 3.14159265358979323846;
-
-// Random-case counts are divided by kReduce in debug builds (unoptimised Eigen is ~50x slower), never to none.
-#ifdef NDEBUG
-constexpr int kReduce = 1;
-#else
-constexpr int kReduce = 10;
-#endif
-int cases(int n) { return std::max(n / kReduce, 2); }
-
-std::string sci(double x) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.3g", x);
-  return buf;
-}
+using namespace unidist::testing;
 
 // ---------------------------------------------------------------------------------------------------------
 // Oracles and shapes

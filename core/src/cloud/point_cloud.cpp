@@ -2,6 +2,7 @@
 // See unidist/point_cloud.h.
 #include "unidist/point_cloud.h"
 
+#include "cloud/point_support.h"
 #include "cloud/point_tree.h"
 #include "primitives/common.h"
 
@@ -66,18 +67,7 @@ SurfacePoint PointCloud::closestPoint(const Eigen::Vector3d& q) const {
 
 BoundingSphere PointCloud::localBoundingSphere() const { return sphere_; }
 
-Eigen::Vector3d PointCloud::support(const Eigen::Vector3d& dir) const {
-  std::size_t best = 0;
-  double bestValue = dir.dot(points_[0]);
-  for (std::size_t i = 1; i < points_.size(); ++i) {
-    const double v = dir.dot(points_[i]);
-    if (v > bestValue) {
-      bestValue = v;
-      best = i;
-    }
-  }
-  return points_[best];
-}
+Eigen::Vector3d PointCloud::support(const Eigen::Vector3d& dir) const { return supportOfPoints(points_, dir); }
 
 namespace {
 

@@ -80,6 +80,8 @@ DistanceResult genericPair(const PosedModel& a, const PosedModel& b, const Query
   // Witness pair from the deepest/closest surface point and its closest point on the other model.
   const PosedModel& fieldOwner = deepest->ofA ? b : a;
   const SurfacePoint onField = fieldOwner.closestWorld(deepest->search.point);
+  // The other model's normal there, turned to point from A toward B (the way B leaves when overlapping).
+  const Eigen::Vector3d awayFromA = deepest->ofA ? Eigen::Vector3d(-onField.normal) : onField.normal;
   Eigen::Vector3d pA = deepest->ofA ? deepest->search.point : onField.point;
   Eigen::Vector3d pB = deepest->ofA ? onField.point : deepest->search.point;
   if (value >= 0 && best.gap < value) {  // alternation found a closer pair than the sampled search
@@ -96,12 +98,11 @@ DistanceResult genericPair(const PosedModel& a, const PosedModel& b, const Query
     const Eigen::Vector3d gapVector = pB - pA;
     const double gapNorm = gapVector.norm();
     if (value >= 0) {
-      r.normal = gapNorm > 0 ? Eigen::Vector3d(gapVector / gapNorm)
-                             : Eigen::Vector3d(deepest->ofA ? -onField.normal : onField.normal);
+      r.normal = gapNorm > 0 ? Eigen::Vector3d(gapVector / gapNorm) : awayFromA;
       r.distance = gapNorm;
     } else {
       // A point of the model without an inside lies in the solid: it leaves along the solid's normal.
-      r.normal = deepest->ofA ? Eigen::Vector3d(-onField.normal) : onField.normal;
+      r.normal = awayFromA;
       r.distance = value;
     }
     r.upperBound = r.distance;
@@ -115,12 +116,12 @@ DistanceResult genericPair(const PosedModel& a, const PosedModel& b, const Query
     return r;
   }
 
-  // 3. Two solids overlap: the global translation depth, bracketed by proved bounds.
-  if (ctx.overlapVerdictOnly) return overlapVerdict();
+  // 3. Two solids overlap (a separation test stopped above): the global translation depth, bracketed by
+  //    proved bounds.
   OverlapSeed seed;
   seed.provedDepth = -value;  // the deepest surface point must travel at least its depth
   seed.deepPoint = deepest->search.point;
-  seed.direction = deepest->ofA ? Eigen::Vector3d(-onField.normal) : onField.normal;
+  seed.direction = awayFromA;
   addPlaneEscapes(a, b, seed);
   DistanceResult depth = translationalDepth(a, b, ctx, seed);
   depth.iterations += iterations;

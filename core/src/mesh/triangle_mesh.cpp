@@ -2,6 +2,7 @@
 // its sign, the winding-number inside test, the support map and the surface cells. See unidist/mesh.h.
 #include "unidist/mesh.h"
 
+#include "cloud/point_support.h"
 #include "mesh/bvh.h"
 #include "mesh/mesh_topology.h"
 #include "mesh/point_triangle.h"
@@ -318,18 +319,7 @@ SurfacePoint TriangleMesh::closestPoint(const Eigen::Vector3d& q) const { return
 BoundingSphere TriangleMesh::localBoundingSphere() const { return sphere_; }
 
 Eigen::Vector3d TriangleMesh::support(const Eigen::Vector3d& dir) const {
-  if (!stats_.convex) {
-    std::size_t best = 0;
-    double bestValue = dir.dot(vertices_[0]);
-    for (std::size_t v = 1; v < vertices_.size(); ++v) {
-      const double value = dir.dot(vertices_[v]);
-      if (value > bestValue) {
-        bestValue = value;
-        best = v;
-      }
-    }
-    return vertices_[best];
-  }
+  if (!stats_.convex) return supportOfPoints(vertices_, dir);
   // Convex: a vertex no neighbour improves on is the maximum (the edges at a vertex of a convex polytope span
   // its tangent cone), so steepest ascent from the best of the 14 precomputed extremes is exact.
   std::uint32_t current = extremeVertices_[0];
