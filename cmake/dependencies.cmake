@@ -35,6 +35,13 @@ else()
 endif()
 unidist_require_pc(ODE "ode>=0.16" libode-dev)
 unidist_require_pc(OSMESA osmesa libosmesa6-dev)
+# Engine headers are SYSTEM includes so their warnings never trip -Werror.
+foreach(_engine BULLET ODE)
+  get_target_property(_dirs PkgConfig::${_engine} INTERFACE_INCLUDE_DIRECTORIES)
+  if(_dirs)
+    set_property(TARGET PkgConfig::${_engine} PROPERTY INTERFACE_SYSTEM_INCLUDE_DIRECTORIES "${_dirs}")
+  endif()
+endforeach()
 
 # The engines' scalar widths must match the headers we compile against; a mismatch links and then crashes.
 include(CheckCXXSourceCompiles)

@@ -14,13 +14,13 @@ else()
 endif()
 set(UNIDIST_ODE_PC_MODULE "ode>=0.16")
 
-install(TARGETS unidist_core unidist_adapters unidist_bullet unidist_ode unidist
+install(TARGETS unidist_core unidist_adapters unidist_adapters_bullet unidist_adapters_ode unidist_bullet unidist_ode unidist
         EXPORT unidistTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
         LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
         RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR}
         INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
-foreach(_dir core/include adapters/include plugin/bullet/include plugin/ode/include)
+foreach(_dir core/include adapters/include adapters/bullet/include adapters/ode/include plugin/bullet/include plugin/ode/include)
   install(DIRECTORY "${_unidist_root}/${_dir}/" DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
           FILES_MATCHING PATTERN "*.h")
 endforeach()

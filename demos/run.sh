@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Install missing Debian packages (as root), build Release in build/, run the main demo (demos/main_demo.sh).
+# Install missing Debian packages (as root), build Release in build/, run the main demo (demos/main_demo.sh:
+# the mixed scene in Bullet and ODE).
 set -euo pipefail
 
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"

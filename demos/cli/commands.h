@@ -29,9 +29,18 @@ struct ContactsArgs {
   bool json = false;
 };
 
+struct SimArgs {
+  std::string scene;
+  std::string engine = "bullet";
+  std::string steps, trajectory, recordEvery;
+  bool hasSteps = false, hasRecordEvery = false;
+  bool json = false;
+};
+
 /// Each returns the text for stdout; the caller writes it only when the whole command succeeded.
 std::string runDistance(const DistanceArgs& args);
 std::string runInfo(const InfoArgs& args);
 std::string runContacts(const ContactsArgs& args);
+std::string runSim(const SimArgs& args);
 
 }  // namespace unidist::cli

@@ -77,6 +77,16 @@ int run(int argc, char** argv) {
       contCmd->add_option("--max-contacts", cont.maxContacts, "At most N contacts, deepest first (default 0: all)");
   contCmd->add_flag("--json", cont.json, "Print one JSON object");
 
+  unidist::cli::SimArgs sim;
+  CLI::App* simCmd = app.add_subcommand("sim", "Run a scene file headless in Bullet or ODE with the unidist plugin");
+  simCmd->add_option("SCENE", sim.scene, "Scene file (JSON; docs/scenes.md)")->required();
+  simCmd->add_option("--engine", sim.engine, "bullet (default) or ode");
+  CLI::Option* simSteps = simCmd->add_option("--steps", sim.steps, "Number of steps (default: the scene's)");
+  simCmd->add_option("--trajectory", sim.trajectory, "Write poses as CSV to this file");
+  CLI::Option* recordEvery =
+      simCmd->add_option("--record-every", sim.recordEvery, "Trajectory: every K-th step (default 10)");
+  simCmd->add_flag("--json", sim.json, "Print one JSON object");
+
   // CLI11 would call an unknown subcommand an unexpected argument; say what it is and what exists.
   std::string known;
   bool isKnown = false;
@@ -107,8 +117,11 @@ int run(int argc, char** argv) {
   cont.hasPoseB = contPoseB->count() > 0;
   cont.hasMargin = margin->count() > 0;
   cont.hasMaxContacts = maxContacts->count() > 0;
+  sim.hasSteps = simSteps->count() > 0;
+  sim.hasRecordEvery = recordEvery->count() > 0;
   const std::string out = distCmd->parsed()   ? unidist::cli::runDistance(dist)
                           : contCmd->parsed() ? unidist::cli::runContacts(cont)
+                          : simCmd->parsed()  ? unidist::cli::runSim(sim)
                                               : unidist::cli::runInfo(info);
   std::fwrite(out.data(), 1, out.size(), stdout);
   return std::fflush(stdout) == 0 ? 0 : 1;

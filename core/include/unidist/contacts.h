@@ -24,8 +24,8 @@ struct ContactOptions {
   double margin = 0;
   /// At most this many contacts (the deepest first, then spread by position); 0: no limit.
   int maxContacts = 0;
-  /// Absolute slack for the tests (ties, "touching"); negative → 1e-9 × the larger bounding-box diagonal; never
-  /// below 1e-12 × that diagonal (rounding).
+  /// Absolute slack for the tests (ties, "touching") and accuracy of the global queries; negative → 1e-9 × the
+  /// larger bounding-box diagonal; never below 1e-12 × that diagonal (rounding).
   double tolerance = -1;
 };
 

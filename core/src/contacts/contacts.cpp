@@ -60,7 +60,7 @@ void toWorld(std::vector<Contact>& cs, const Eigen::Isometry3d& X_WA) {
 /// and the global answer when the meshes cross without a vertex inside the other.
 void meshMesh(const TriangleMesh& a, const Eigen::Isometry3d& X_WA, const TriangleMesh& b,
               const Eigen::Isometry3d& X_WB, double margin, double tol, double dirEps, const Model& origA,
-              const Model& origB, std::vector<Contact>& out) {
+              const Model& origB, const DistanceOptions& global, std::vector<Contact>& out) {
   const contact::MeshFeatures fa(a), fb(b);
   const Eigen::Isometry3d X_AB = X_WA.inverse() * X_WB;
   contact::SnchResult r = contact::snchSearch(a, fa, b, fb, X_AB, margin, tol, dirEps);
@@ -76,7 +76,7 @@ void meshMesh(const TriangleMesh& a, const Eigen::Isometry3d& X_WA, const Triang
     const bool contained = (b.isSolid() && b.inside(X_AB.inverse() * a.vertices()[0])) ||
                            (a.isSolid() && a.inside(X_AB * b.vertices()[0]));
     if (!contained) return;
-    const DistanceResult d = distance(origA, X_WA, origB, X_WB);
+    const DistanceResult d = distance(origA, X_WA, origB, X_WB, global);
     if (d.distance < -tol) out.push_back(fromDistance(d));
     return;
   }
@@ -86,7 +86,7 @@ void meshMesh(const TriangleMesh& a, const Eigen::Isometry3d& X_WA, const Triang
   contact::meshVertexContacts(a, fa, X_WA, b, X_WB, margin, tol, true, true, out);
   contact::meshVertexContacts(b, fb, X_WB, a, X_WA, margin, tol, false, true, out);
   if (out.size() > before) return;
-  const DistanceResult d = distance(origA, X_WA, origB, X_WB);
+  const DistanceResult d = distance(origA, X_WA, origB, X_WB, global);
   if (d.distance < -tol) out.push_back(fromDistance(d));
 }
 
@@ -119,14 +119,17 @@ std::vector<Contact> contacts(const Model& a, const Eigen::Isometry3d& X_WA, con
   const double dirEps = defaultTol;  // 1e-9 × size: below it the two points' direction is mostly rounding
   const double margin = options.margin;
   const Working wa = working(a), wb = working(b);
+  // The global queries honour the caller's tolerance too: it is what makes contacts cheap enough per step.
+  DistanceOptions global;
+  if (options.tolerance >= 0) global.tolerance = tol;
 
   std::vector<Contact> out;
   if (wa.mesh() && wb.mesh()) {
-    meshMesh(*wa.mesh(), X_WA, *wb.mesh(), X_WB, margin, tol, dirEps, a, b, out);
+    meshMesh(*wa.mesh(), X_WA, *wb.mesh(), X_WB, margin, tol, dirEps, a, b, global, out);
   } else {
     pointQueries(wa, X_WA, b, X_WB, margin, tol, true, out);
     pointQueries(wb, X_WB, a, X_WA, margin, tol, false, out);
-    const DistanceResult d = distance(a, X_WA, b, X_WB);
+    const DistanceResult d = distance(a, X_WA, b, X_WB, global);
     if (d.distance <= margin + tol) {
       Contact c = fromDistance(d);
       c.featureA = a.closestPoint(X_WA.inverse() * c.pointA).feature;

@@ -100,11 +100,17 @@ std::vector<Eigen::Vector3d> derivativeCoefficients(const RationalBezierPatch& p
 }  // namespace
 
 Cone coneOfVectors(const std::vector<Eigen::Vector3d>& vectors) {
+  // A coefficient that is zero in exact arithmetic (the collapsed edge of a pole) comes out of subdivision as
+  // rounding noise pointing anywhere; counted, it would open the cone to everything near every pole (and how
+  // often that happens depends on the model's scale). Vectors at rounding level of the largest are dropped.
+  double largest = 0;
+  for (const Eigen::Vector3d& v : vectors) largest = std::max(largest, v.norm());
+  const double noise = 1e-12 * largest;
   Cone c;
   bool started = false;
   for (const Eigen::Vector3d& v : vectors) {
     const double n = v.norm();
-    if (n == 0) continue;  // a zero vector adds nothing to a non-negative combination
+    if (n <= noise) continue;  // a zero vector adds nothing to a non-negative combination
     const Eigen::Vector3d u = v / n;
     if (!started) {
       c = {u, 0.0, false};

@@ -1,0 +1,332 @@
+// Simulation contacts (unidist/contact_manifold.h): the local minima of unidist::contacts(), a resting patch
+// filled in by tilting A, a warm start that re-measures cached witness points while the pair moves less than
+// a guard distance, and the reduction to the engine's contact count.
+#include "unidist/contact_manifold.h"
+
+#include "contacts/reduce.h"
+#include "unidist/distance.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <queue>
+
+namespace unidist {
+namespace {
+
+/// Tilt used to find the rest of a resting patch: large enough that the far side of a flat or circular patch
+/// is clearly the deepest point of the tilted pose, small enough that the tilted pose is still "this contact".
+constexpr double kPatchTilt = 0.05;
+/// Warm-start guard in units of the query tolerance: motion below it changes a re-measured witness pair's
+/// distance by second-order amounts only (curvature × guard²), far below the tolerance.
+constexpr double kGuardInTolerances = 10;
+/// Lift of A off B before measuring (at least the margin): resting overlaps are a few tolerances deep.
+constexpr double kSkinInTolerances = 50;
+
+double boundedDiagonal(const Model& m) {
+  const Aabb box = m.localBounds();
+  return box.bounded() ? box.diagonal() : std::numeric_limits<double>::infinity();
+}
+
+double defaultSimulationTolerance(const Model& a, const Model& b) {
+  const double d = std::min(boundedDiagonal(a), boundedDiagonal(b));
+  return std::isfinite(d) && d > 0 ? 1e-4 * d : 1e-9;
+}
+
+/// Largest displacement of any point of the moving model between two relative poses (its bounding ball moved
+/// by the change of pose): |ΔX·c| + ‖R − R0‖₂·r with ‖R − R0‖₂ = 2 sin(angle/2).
+double motionBound(const Eigen::Isometry3d& X0, const Eigen::Isometry3d& X1, const BoundingSphere& s) {
+  const Eigen::Vector3d shift = X1 * s.center - X0 * s.center;
+  const Eigen::AngleAxisd turn(X1.linear() * X0.linear().transpose());
+  return shift.norm() + 2 * std::sin(0.5 * std::abs(turn.angle())) * s.radius;
+}
+
+/// How far the pair has moved relative to each other since the cache was filled, measured on whichever model
+/// is bounded and smaller (a half-space has no bounding ball).
+double relativeMotion(const Model& a, const Model& b, const Eigen::Isometry3d& X_AB0, const Eigen::Isometry3d& X_AB) {
+  const BoundingSphere sa = a.localBoundingSphere(), sb = b.localBoundingSphere();
+  if (sb.radius <= sa.radius) return motionBound(X_AB0, X_AB, sb);  // B moving in A's frame
+  return motionBound(X_AB0.inverse(), X_AB.inverse(), sa);           // A moving in B's frame
+}
+
+/// Where the two points are apart, the normal is their direction (exactly the contract's pointB − pointA =
+/// distance · normal); the surface normal is kept only where they coincide.
+void normalFromPoints(Contact& c) {
+  const Eigen::Vector3d gap = c.pointB - c.pointA;
+  const double scale = 1 + c.pointA.cwiseAbs().maxCoeff();
+  if (gap.norm() > 1e-12 * scale && c.distance != 0) c.normal = (gap / c.distance).normalized();
+}
+
+/// The contact of the untilted pair at a point of A's surface: B's closest point to it (world frame).
+Contact remeasureFromA(const Eigen::Vector3d& pA_W, const Model& b, const Eigen::Isometry3d& X_WB, int featureA) {
+  const SurfacePoint s = b.closestPoint(X_WB.inverse() * pA_W);
+  Contact c;
+  c.pointA = pA_W;
+  c.pointB = X_WB * s.point;
+  c.distance = s.signedDistance;
+  c.normal = -(X_WB.linear() * s.normal);  // B's outward normal points at A: the contact normal is its opposite
+  c.featureA = featureA;
+  c.featureB = s.feature;
+  normalFromPoints(c);
+  return c;
+}
+
+/// The same from a point of B's surface (A's closest point to it).
+Contact remeasureFromB(const Eigen::Vector3d& pB_W, const Model& a, const Eigen::Isometry3d& X_WA, int featureB) {
+  const SurfacePoint s = a.closestPoint(X_WA.inverse() * pB_W);
+  Contact c;
+  c.pointA = X_WA * s.point;
+  c.pointB = pB_W;
+  c.distance = s.signedDistance;
+  c.normal = X_WA.linear() * s.normal;
+  c.featureA = s.feature;
+  c.featureB = featureB;
+  normalFromPoints(c);
+  return c;
+}
+
+/// A cached witness pair re-measured at the current poses: each point rides with its model and is re-projected
+/// onto the other; the deeper of the two readings wins (it is the one anchored at the sharper feature — a box
+/// corner's depth, not the zero a face point reads against that corner).
+Contact remeasure(const Contact& cached_A, const Model& a, const Eigen::Isometry3d& X_WA, const Model& b,
+                  const Eigen::Isometry3d& X_WB, const Eigen::Isometry3d& X_AB0) {
+  const Eigen::Vector3d pB_W = X_WB * (X_AB0.inverse() * cached_A.pointB);  // B's point rides with B
+  const Contact fromA = remeasureFromA(X_WA * cached_A.pointA, b, X_WB, cached_A.featureA);
+  if (!a.isSolid()) return fromA;  // no inside: B's point would read an unsigned distance
+  const Contact fromB = remeasureFromB(pB_W, a, X_WA, cached_A.featureB);
+  return fromB.distance < fromA.distance ? fromB : fromA;
+}
+
+/// The same contact with the roles of A and B exchanged.
+Contact swapped(const Contact& c) {
+  Contact s = c;
+  std::swap(s.pointA, s.pointB);
+  std::swap(s.featureA, s.featureB);
+  s.normal = -c.normal;
+  return s;
+}
+
+/// Moves a contact of the untilted pair to the locally deepest (or nearest) one: A's point is replaced by the
+/// point of A closest to a probe pushed from it along the contact normal (the probe's distance makes that the
+/// local support point of A in the normal direction), and B's point re-measured from it, while that deepens
+/// the contact. Converges where the two surfaces' normals are opposite: a local minimum of signed distance.
+Contact refine(Contact c, const Model& a, const Eigen::Isometry3d& X_WA, const Model& b, const Eigen::Isometry3d& X_WB,
+               double reach) {
+  for (int round = 0; round < 4; ++round) {
+    const Eigen::Vector3d probe = X_WA.inverse() * (c.pointA + reach * c.normal);
+    const SurfacePoint s = a.closestPoint(probe);
+    const Contact next = remeasureFromA(X_WA * s.point, b, X_WB, s.feature);
+    if (!(next.distance < c.distance)) break;
+    c = next;
+  }
+  return c;
+}
+
+/// Tilts A about two axes perpendicular to the deepest contact's normal and keeps each tilted pose's deepest
+/// point of A toward B when it is a contact of the untilted pair within the margin (re-measured at the true
+/// poses, then refined to the local minimum of its region). The tilted deepest point is A's support point in
+/// the tilted normal direction: no pair query, and exact against a flat B (against a curved one the
+/// re-measurement decides).
+void fillPatch(const Model& a, const Eigen::Isometry3d& X_WA, const Model& b, const Eigen::Isometry3d& X_WB,
+               double margin, std::vector<Contact>& cs) {
+  const Eigen::Vector3d n = cs.front().normal;
+  const Eigen::Vector3d u = n.unitOrthogonal(), v = n.cross(u);
+  const double reach = a.localBoundingSphere().radius;
+  std::vector<Contact> found;
+  for (const Eigen::Vector3d& axis : {u, v}) {
+    for (double sign : {1.0, -1.0}) {
+      const Eigen::Matrix3d tilt = Eigen::AngleAxisd(sign * kPatchTilt, axis).toRotationMatrix();
+      const Eigen::Vector3d dir_A = X_WA.linear().transpose() * (tilt.transpose() * n);
+      const Eigen::Vector3d pA = a.support(dir_A);
+      Contact c = remeasureFromA(X_WA * pA, b, X_WB, a.closestPoint(pA).feature);
+      if (c.distance > margin) continue;
+      found.push_back(refine(c, a, X_WA, b, X_WB, reach));
+    }
+  }
+  cs.insert(cs.end(), found.begin(), found.end());
+}
+
+/// Whether every point of A is farther than `margin` from every point of B, proved from the models' surface
+/// cells (best-first, splitting the larger cell of the closest pair) within a small budget; false when
+/// unproved. Most pairs a broadphase hands over are apart: this spares them the global query (seconds for two
+/// curved models whose minimum is a circle, like a ball in a ring).
+bool provablyApart(const Model& a, const Eigen::Isometry3d& X_WA, const Model& b, const Eigen::Isometry3d& X_WB,
+                   double margin) {
+  constexpr int kBudget = 400;
+  struct Pair {
+    double bound;
+    SurfaceCell ca, cb;
+    bool operator>(const Pair& o) const { return bound > o.bound; }
+  };
+  const std::vector<SurfaceCell> rootsA = a.surfaceCells(), rootsB = b.surfaceCells();
+  if (rootsA.empty() || rootsB.empty()) return false;  // unbounded (a half-space): nothing to prove with
+  auto bound = [&](const SurfaceCell& x, const SurfaceCell& y) {
+    return (X_WA * x.center - X_WB * y.center).norm() - x.radius - y.radius;
+  };
+  std::priority_queue<Pair, std::vector<Pair>, std::greater<Pair>> open;
+  for (const SurfaceCell& x : rootsA)
+    for (const SurfaceCell& y : rootsB) open.push({bound(x, y), x, y});
+  std::vector<SurfaceCell> parts;
+  for (int step = 0; step < kBudget && !open.empty(); ++step) {
+    const Pair p = open.top();
+    if (p.bound > margin) return true;  // the closest remaining pair is apart: so is every other
+    open.pop();
+    parts.clear();
+    const bool splitA = p.ca.radius >= p.cb.radius;
+    (splitA ? a : b).splitCell(splitA ? p.ca : p.cb, parts);
+    if (parts.empty()) return false;  // cannot refine further
+    for (const SurfaceCell& c : parts) open.push(splitA ? Pair{bound(c, p.cb), c, p.cb} : Pair{bound(p.ca, c), p.ca, c});
+  }
+  return !open.empty() && open.top().bound > margin;
+}
+
+/// Whether the pair is worth the proof above: curved or meshed models whose global query can be slow (convex
+/// pairs have fast exact routines), never a point cloud (its points may sit inside a solid with no surface near
+/// them), and with no sample of either surface inside the other solid (surfaces apart, one inside the other).
+bool apartWithoutQuery(const Model& a, const Eigen::Isometry3d& X_WA, const Model& b, const Eigen::Isometry3d& X_WB,
+                       double margin) {
+  if (a.isConvex() && b.isConvex()) return false;
+  if (a.type() == ModelType::PointCloud || b.type() == ModelType::PointCloud) return false;
+  if (!provablyApart(a, X_WA, b, X_WB, margin)) return false;
+  const Eigen::Isometry3d X_AB = X_WA.inverse() * X_WB;
+  for (const SurfaceCell& c : b.surfaceCells())
+    if (a.inside(X_AB * c.sample)) return false;
+  for (const SurfaceCell& c : a.surfaceCells())
+    if (b.inside(X_AB.inverse() * c.sample)) return false;
+  return true;
+}
+
+std::vector<Contact> globalContacts(const Model& a, const Eigen::Isometry3d& X_WA, const Model& b,
+                                    const Eigen::Isometry3d& X_WB, double margin, double tol, bool patch) {
+  if (apartWithoutQuery(a, X_WA, b, X_WB, margin)) return {};
+  ContactOptions co;
+  co.margin = margin;
+  co.tolerance = tol;
+  std::vector<Contact> cs = contacts(a, X_WA, b, X_WB, co);
+  if (a.isConvex() && b.isConvex()) {
+    // Two convex solids: the global answer (exact minimum translation when they overlap, cheap for convex
+    // pairs) is the contact a solver wants first; the local ones (a box's corners) keep the patch.
+    DistanceOptions query;
+    query.tolerance = tol;
+    const DistanceResult d = distance(a, X_WA, b, X_WB, query);
+    if (d.distance <= margin) {
+      Contact c;
+      c.pointA = d.pointA, c.pointB = d.pointB, c.normal = d.normal, c.distance = d.distance;
+      c.featureA = a.closestPoint(X_WA.inverse() * c.pointA).feature;
+      c.featureB = b.closestPoint(X_WB.inverse() * c.pointB).feature;
+      cs.push_back(c);
+      contact::mergeDuplicates(cs, 4 * tol);
+    }
+  }
+  if (patch && !cs.empty() && cs.size() < 3) {
+    // Tilt the smaller model: a large one's tilted support point is far from the contact (a floor's corner).
+    if (b.localBoundingSphere().radius < a.localBoundingSphere().radius) {
+      for (Contact& c : cs) c = swapped(c);
+      fillPatch(b, X_WB, a, X_WA, margin, cs);
+      for (Contact& c : cs) c = swapped(c);
+    } else {
+      fillPatch(a, X_WA, b, X_WB, margin, cs);
+    }
+    contact::mergeDuplicates(cs, 4 * tol);
+  }
+  return cs;
+}
+
+void checkOptions(const ManifoldOptions& o) {
+  if (!std::isfinite(o.margin) || o.margin < 0) throw InputError("manifoldContacts: margin must be finite and >= 0");
+  if (o.maxContacts <= 0) throw InputError("manifoldContacts: maxContacts must be > 0");
+  if (std::isnan(o.tolerance) || o.tolerance == std::numeric_limits<double>::infinity())
+    throw InputError("manifoldContacts: tolerance must be finite");
+}
+
+/// The contacts at one pose of A (the true one, or A lifted off B), through the cache when it holds.
+std::vector<Contact> contactsAt(const Model& a, const Eigen::Isometry3d& X_WA, const Model& b,
+                                const Eigen::Isometry3d& X_WB, double margin, double tol, bool patch,
+                                ContactCache* cache) {
+  const Eigen::Isometry3d X_AB = X_WA.inverse() * X_WB;
+  std::vector<Contact> out;
+  if (cache && cache->valid && relativeMotion(a, b, cache->X_AB, X_AB) <= cache->guard) {
+    ++cache->localUpdates;
+    for (const Contact& c : cache->contacts) {
+      const Contact now = remeasure(c, a, X_WA, b, X_WB, cache->X_AB);
+      if (now.distance <= margin) out.push_back(now);
+    }
+    contact::mergeDuplicates(out, 4 * tol);
+    return out;
+  }
+  if (!cache) return globalContacts(a, X_WA, b, X_WB, margin, tol, patch);
+  // Search a margin grown by twice the guard: while the pair moves less than the guard, every point pair now
+  // within the margin was within the grown margin then, so its region holds a cached local minimum.
+  const double guard = kGuardInTolerances * tol;
+  const std::vector<Contact> all = globalContacts(a, X_WA, b, X_WB, margin + 2 * guard, tol, patch);
+  ++cache->globalSearches;
+  cache->valid = true;
+  cache->X_AB = X_AB;
+  cache->guard = guard;
+  cache->contacts.clear();
+  const Eigen::Isometry3d X_AW = X_WA.inverse();
+  for (const Contact& c : all) {
+    Contact local = c;
+    local.pointA = X_AW * c.pointA;
+    local.pointB = X_AW * c.pointB;
+    local.normal = X_AW.linear() * c.normal;
+    cache->contacts.push_back(local);
+    if (c.distance <= margin) out.push_back(c);
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<Contact> manifoldContacts(const Model& a, const Eigen::Isometry3d& X_WA, const Model& b,
+                                      const Eigen::Isometry3d& X_WB, const ManifoldOptions& options,
+                                      ContactCache* cache) {
+  checkOptions(options);
+  if (!X_WA.matrix().allFinite() || !X_WB.matrix().allFinite())
+    throw InputError("manifoldContacts: non-finite pose");
+  const double tol = options.tolerance >= 0 ? options.tolerance : defaultSimulationTolerance(a, b);
+
+  // Resting bodies sink a little into each other every step. Overlap is where contacts are expensive (a
+  // global penetration search) and ill-posed (a box corner below an open floor has no inside to be in), so
+  // when the last step's contact normal is known, A is lifted off B along it by a skin and the contacts of the
+  // separated pair are measured and moved back: translating A by −s·n changes a contact's gap along its normal
+  // n_c by exactly s·(n·n_c). If A still overlaps B after the lift, the true pose is used.
+  std::vector<Contact> out;
+  bool lifted = false;
+  if (cache && cache->hasLift) {
+    const double skin = std::max(options.margin, kSkinInTolerances * tol);
+    const Eigen::Vector3d n = X_WB.linear() * cache->liftNormal_B;
+    Eigen::Isometry3d X_WAl = X_WA;
+    X_WAl.pretranslate(-skin * n);
+    out = contactsAt(a, X_WAl, b, X_WB, options.margin + skin, tol, options.fillPatch, cache);
+    lifted = std::none_of(out.begin(), out.end(), [&](const Contact& c) { return c.distance < -tol; });
+    if (lifted) {
+      for (Contact& c : out) {
+        // A's point is exact; B's is kept on B's tangent plane so that pointB − pointA = distance · normal still
+        // holds when the lift and the contact normal differ (exactly B's point when they agree).
+        c.pointA += skin * n;
+        c.distance -= skin * n.dot(c.normal);
+        c.pointB = c.pointA + c.distance * c.normal;
+      }
+      out.erase(std::remove_if(out.begin(), out.end(), [&](const Contact& c) { return c.distance > options.margin; }),
+                out.end());
+    } else {
+      cache->valid = false;  // its contacts belong to the lifted pose
+    }
+  }
+  if (!lifted) out = contactsAt(a, X_WA, b, X_WB, options.margin, tol, options.fillPatch, cache);
+  contact::mergeDuplicates(out, 4 * tol);
+  if (cache) {
+    // The next step lifts along this step's deepest normal (kept in B's frame: a ball rolling on a floor turns,
+    // the floor's normal does not). A cache whose lift direction changes starts a new global search.
+    const bool had = cache->hasLift;
+    const Eigen::Vector3d before = cache->liftNormal_B;
+    cache->hasLift = !out.empty();
+    if (cache->hasLift) cache->liftNormal_B = X_WB.linear().transpose() * out.front().normal;
+    if (had != cache->hasLift || (had && before.dot(cache->liftNormal_B) < 1 - 1e-6)) cache->valid = false;
+  }
+  contact::reduceContacts(out, options.maxContacts);
+  return out;
+}
+
+}  // namespace unidist

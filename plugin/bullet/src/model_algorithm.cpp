@@ -1,0 +1,137 @@
+#include "model_algorithm.h"
+
+#include "eigen_bullet.h"
+#include "unidist/bullet/shapes.h"
+#include "unidist/contact_manifold.h"
+
+#include <BulletDynamics/Dynamics/btRigidBody.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace unidist::bullet {
+
+/// What a pair keeps between steps.
+struct PairState {
+  ContactCache cache;
+  const Model* cachedA = nullptr;  // the cache belongs to these two models
+  const Model* cachedB = nullptr;
+};
+
+namespace {
+
+/// The other side as a core model: a unidist shape's own model, a triangle converted afresh (Bullet reuses
+/// one btTriangleShape object for every triangle it visits), anything else from the shared cache.
+ConvertedShape otherModel(const btCollisionShape& shape, Registration::Impl& registration) {
+  if (const ModelShapeData* d = shapeData(&shape)) return ConvertedShape{d->model(), 0, Eigen::Isometry3d::Identity()};
+  if (shape.getShapeType() == TRIANGLE_SHAPE_PROXYTYPE) return modelFromBulletShape(shape);
+  return registration.shapeCache.get(shape);
+}
+
+/// How far the two objects can approach each other during the next step (relative speed bound × dt): contacts
+/// up to that distance are reported as speculative ones so that a fast body meets the solver before it tunnels.
+double speculativeDistance(const btCollisionObjectWrapper* a, const btCollisionObjectWrapper* b, double dt) {
+  double speed = 0;
+  Eigen::Vector3d v = Eigen::Vector3d::Zero();
+  for (const btCollisionObjectWrapper* w : {a, b}) {
+    const btRigidBody* body = btRigidBody::upcast(w->getCollisionObject());
+    if (!body) continue;
+    btVector3 center;
+    btScalar radius;
+    w->getCollisionShape()->getBoundingSphere(center, radius);
+    const Eigen::Vector3d lin = toEigen(body->getLinearVelocity());
+    v += (w == a) ? lin : Eigen::Vector3d(-lin);
+    speed += toEigen(body->getAngularVelocity()).norm() * (double(center.length()) + double(radius));
+  }
+  return (v.norm() + speed) * dt;
+}
+
+double pairTolerance(const ModelShapeData& a, const btCollisionShape& other) {
+  const ModelShapeData* b = shapeData(&other);
+  const double ta = a.tolerance(), tb = b ? b->tolerance() : -1;
+  if (ta >= 0 && tb >= 0) return std::min(ta, tb);
+  return ta >= 0 ? ta : tb;
+}
+
+}  // namespace
+
+ModelAlgorithm::ModelAlgorithm(btPersistentManifold* manifold, const btCollisionAlgorithmConstructionInfo& ci,
+                               const btCollisionObjectWrapper* w0, const btCollisionObjectWrapper* w1, bool swapped,
+                               Registration::Impl* registration)
+    : btActivatingCollisionAlgorithm(ci, w0, w1),
+      manifold_(manifold),
+      swapped_(swapped),
+      registration_(registration),
+      state_(std::make_unique<PairState>()) {
+  if (!manifold_) {  // own manifold, ordered (unidist shape, other); wrapper transforms are not valid yet
+    const btCollisionObjectWrapper* a = swapped ? w1 : w0;
+    const btCollisionObjectWrapper* b = swapped ? w0 : w1;
+    manifold_ = m_dispatcher->getNewManifold(a->getCollisionObject(), b->getCollisionObject());
+    ownManifold_ = true;
+    baseThreshold_ = manifold_->getContactBreakingThreshold();
+  }
+}
+
+ModelAlgorithm::~ModelAlgorithm() {
+  if (ownManifold_ && manifold_) m_dispatcher->releaseManifold(manifold_);
+}
+
+void ModelAlgorithm::processCollision(const btCollisionObjectWrapper* w0, const btCollisionObjectWrapper* w1,
+                                      const btDispatcherInfo& info, btManifoldResult* result) {
+  const btCollisionObjectWrapper* a = swapped_ ? w1 : w0;  // the unidist shape
+  const btCollisionObjectWrapper* b = swapped_ ? w0 : w1;
+  const ModelShapeData* da = shapeData(a->getCollisionShape());
+  if (!da) return;  // a table cell reached with a shape that is not ours: nothing to say about it
+  const ConvertedShape other = otherModel(*b->getCollisionShape(), *registration_);
+  const Model& modelA = *da->model();
+  const Model& modelB = *other.model;
+  if (state_->cachedA != &modelA || state_->cachedB != &modelB) {
+    state_->cache.reset();
+    state_->cachedA = &modelA;
+    state_->cachedB = &modelB;
+  }
+
+  result->setPersistentManifold(manifold_);  // before any addContactPoint (closest-point queries need it too)
+  const double speculative = speculativeDistance(a, b, double(info.m_timeStep));
+  double threshold = double(manifold_->getContactBreakingThreshold());
+  if (ownManifold_) {
+    threshold = double(baseThreshold_) + speculative;
+    manifold_->setContactBreakingThreshold(btScalar(threshold));
+  }
+  ManifoldOptions options;
+  options.margin = threshold + double(result->m_closestPointDistanceThreshold) + other.outerMargin;
+  options.maxContacts = 4;
+  options.tolerance = pairTolerance(*da, *b->getCollisionShape());
+
+  const long globalBefore = state_->cache.globalSearches, localBefore = state_->cache.localUpdates;
+  // A Bullet capsule, cylinder or cone along x or y is a unidist one along z posed by X_SM.
+  const std::vector<Contact> cs = manifoldContacts(modelA, toEigen(a->getWorldTransform()), modelB,
+                                                   toEigen(b->getWorldTransform()) * other.X_SM, options,
+                                                   &state_->cache);
+  registration_->globalSearches += state_->cache.globalSearches - globalBefore;
+  registration_->localUpdates += state_->cache.localUpdates - localBefore;
+  const bool aIsBody0 = manifold_->getBody0() == a->getCollisionObject();
+  for (const Contact& c : cs) {
+    // B's surface grows by Bullet's outside margin: the gap shrinks by it and B's point moves toward A.
+    const double d = c.distance - other.outerMargin;
+    const Eigen::Vector3d pointB = c.pointB - other.outerMargin * c.normal;
+    if (aIsBody0)  // manifold (unidist, other): normal on B (other) pointing at A, the point on B
+      result->addContactPoint(toBullet(Eigen::Vector3d(-c.normal)), toBullet(pointB), btScalar(d));
+    else  // shared manifold ordered (other, unidist): normal on the unidist shape pointing at the other
+      result->addContactPoint(toBullet(c.normal), toBullet(c.pointA), btScalar(d));
+  }
+  if (ownManifold_) result->refreshContactPoints();  // shared manifolds: their owner refreshes
+}
+
+void ModelAlgorithm::getAllContactManifolds(btManifoldArray& manifolds) {
+  if (ownManifold_ && manifold_) manifolds.push_back(manifold_);
+}
+
+btCollisionAlgorithm* ModelAlgorithm::CreateFunc::CreateCollisionAlgorithm(btCollisionAlgorithmConstructionInfo& ci,
+                                                                           const btCollisionObjectWrapper* w0,
+                                                                           const btCollisionObjectWrapper* w1) {
+  void* memory = ci.m_dispatcher1->allocateCollisionAlgorithm(sizeof(ModelAlgorithm));
+  return new (memory) ModelAlgorithm(ci.m_manifold, ci, w0, w1, m_swapped, registration_);
+}
+
+}  // namespace unidist::bullet

@@ -1,0 +1,120 @@
+// The one collider of the unidist geom class: o1 is always the unidist geom (ODE swaps the arguments and negates
+// the normals itself when the caller passed it second), o2 any supported class.
+#include "plugin_state.h"
+#include "unidist/adapters/ode_geoms.h"
+#include "unidist/mesh.h"
+#include "unidist/raycast.h"
+
+#include <algorithm>
+#include <cmath>
+#include <exception>
+
+namespace unidist::ode::detail {
+namespace {
+
+dContactGeom* slot(dContactGeom* contacts, int i, int skip) {
+  return reinterpret_cast<dContactGeom*>(reinterpret_cast<char*>(contacts) + static_cast<std::ptrdiff_t>(i) * skip);
+}
+
+void put(dReal* out, const Eigen::Vector3d& v) {
+  out[0] = v.x();
+  out[1] = v.y();
+  out[2] = v.z();
+}
+
+/// Query accuracy of a pair: the smaller explicit setting, else the default (negative: ManifoldOptions decides).
+double pairTolerance(const GeomRecord& a, const GeomRecord* b) {
+  const double tb = b ? b->tolerance : -1;
+  if (a.tolerance > 0 && tb > 0) return std::min(a.tolerance, tb);
+  return a.tolerance > 0 ? a.tolerance : tb;
+}
+
+/// Default ray accuracy: 1e-4 × the model's bounding diagonal (1e-9 for an unbounded model).
+double rayTolerance(const GeomRecord& a) {
+  if (a.tolerance > 0) return a.tolerance;
+  const Aabb box = a.model->localBounds();
+  return box.bounded() && box.diagonal() > 0 ? 1e-4 * box.diagonal() : 1e-9;
+}
+
+int rayContact(dGeomID o1, const GeomRecord& a, dGeomID ray, dContactGeom* out) {
+  dVector3 start, dir;
+  dGeomRayGet(ray, start, dir);
+  const Eigen::Vector3d origin(start[0], start[1], start[2]);
+  const Eigen::Vector3d d = Eigen::Vector3d(dir[0], dir[1], dir[2]).normalized();
+  const double length = dGeomRayGetLength(ray);
+  const double tol = rayTolerance(a);
+  const Eigen::Isometry3d X_WA = odeGeomPose(o1);
+  RayHit hit = raycast(*a.model, X_WA, origin, d, length, tol);
+  if (hit.hit && hit.startedInside && dGeomRayGetBackfaceCull(ray)) {
+    // Culled back face: look for the next entry past the exit point.
+    const double skipTo = hit.t + 4 * tol;
+    if (skipTo >= length) return 0;
+    hit = raycast(*a.model, X_WA, origin + skipTo * d, d, length - skipTo, tol);
+    if (!hit.hit || hit.startedInside) return 0;
+    hit.t += skipTo;
+  }
+  if (!hit.hit) return 0;
+  put(out->pos, hit.point);
+  put(out->normal, -hit.normal);  // seen from g1 = the unidist geom; ODE negates it for dCollide(ray, geom)
+  out->depth = hit.t;
+  out->g1 = o1;
+  out->g2 = ray;
+  out->side1 = hit.feature;
+  out->side2 = -1;
+  return 1;
+}
+
+/// ODE's feature id on the other geom: the trimesh's own triangle index, nothing for ODE's primitives.
+int otherSide(int otherClass, const Model& b, int featureB, bool otherIsUnidist) {
+  if (otherIsUnidist) return featureB;
+  if (otherClass == dTriMeshClass) return static_cast<int>(static_cast<const TriangleMesh&>(b).sourceTriangle(featureB));
+  return -1;
+}
+
+int modelContacts(dGeomID o1, const GeomRecord& a, dGeomID o2, int maxc, dContactGeom* contacts, int skip) {
+  const int otherClass = dGeomGetClass(o2);
+  const GeomRecord* b = record(o2);
+  const std::shared_ptr<const Model> modelB = b ? b->model : modelFromOdeGeom(o2);
+  const Eigen::Isometry3d X_WA = odeGeomPose(o1), X_WB = odeGeomPose(o2);
+
+  ManifoldOptions options;
+  options.maxContacts = maxc;
+  options.tolerance = pairTolerance(a, b);
+  ContactCache& cache = pairCache(o1, o2, otherClass, modelB->localBounds());
+  const std::vector<Contact> found = manifoldContacts(*a.model, X_WA, *modelB, X_WB, options, &cache);
+
+  int n = 0;
+  for (const Contact& c : found) {
+    if (c.distance > 0) continue;  // ODE wants touching or penetrating points only
+    dContactGeom* g = slot(contacts, n, skip);
+    put(g->pos, 0.5 * (c.pointA + c.pointB));
+    put(g->normal, -c.normal);  // unidist: A toward B; ODE: from g2 into g1
+    g->depth = -c.distance;
+    g->g1 = o1;
+    g->g2 = o2;
+    g->side1 = c.featureA;
+    g->side2 = otherSide(otherClass, *modelB, c.featureB, b != nullptr);
+    if (++n == maxc) break;
+  }
+  return n;
+}
+
+}  // namespace
+
+int collide(dGeomID o1, dGeomID o2, int flags, dContactGeom* contacts, int skip) {
+  const int maxc = flags & 0xffff;
+  if (maxc < 1) return 0;
+  try {
+    const GeomRecord* a = record(o1);
+    if (!a || !a->model) return 0;  // not ours (cannot happen through ODE's table) or already destroyed
+    if (dGeomGetClass(o2) == dRayClass) return rayContact(o1, *a, o2, contacts);
+    return modelContacts(o1, *a, o2, maxc, contacts, skip);
+  } catch (const std::exception& e) {
+    reportError(std::string("collider: ") + e.what());
+  } catch (...) {
+    reportError("collider: unknown exception");
+  }
+  return 0;
+}
+
+}  // namespace unidist::ode::detail

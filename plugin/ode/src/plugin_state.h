@@ -1,0 +1,33 @@
+// Shared state of the ODE plugin: the registered class, the per-geom records and the per-pair warm-start caches.
+#pragma once
+
+#include "unidist/contact_manifold.h"
+#include "unidist/model.h"
+
+#include <ode/ode.h>
+
+#include <memory>
+#include <string>
+
+namespace unidist::ode::detail {
+
+/// What a unidist geom owns (ODE's class data holds only a pointer to it: raw zeroed memory, no constructors).
+struct GeomRecord {
+  std::shared_ptr<const Model> model;
+  double tolerance = -1;
+};
+
+/// The record of a unidist geom, or null for other geoms.
+GeomRecord* record(dGeomID g);
+
+/// The warm-start cache of the pair (unidist geom a, other geom b), reset when b's class or bounds differ from
+/// the ones it was filled with. The reference stays valid until the pair's entry is erased (a geom destroyed).
+ContactCache& pairCache(dGeomID a, dGeomID b, int otherClass, const Aabb& otherBounds);
+
+/// Remembers a collider's error for lastError() and prints it through dMessage.
+void reportError(const std::string& message);
+
+/// The one collider of the class (collider.cpp): o1 is the unidist geom, o2 any supported geom.
+int collide(dGeomID o1, dGeomID o2, int flags, dContactGeom* contacts, int skip);
+
+}  // namespace unidist::ode::detail
