@@ -12,7 +12,13 @@
 
 #include "unidist/model.h"
 
+#include <atomic>
+#include <memory>
+#include <mutex>
+
 namespace unidist {
+
+class TriangleMesh;
 
 /// Shared pieces of every primitive (no acceleration structure, constant memory).
 class Primitive : public Model {
@@ -53,9 +59,23 @@ class Box final : public Primitive {
   std::vector<SurfaceCell> surfaceCells() const override;
   void splitCell(const SurfaceCell& cell, std::vector<SurfaceCell>& out) const override;
   std::string describe() const override;
+  std::size_t memoryBytes() const override;
+
+  /// The same solid as 12 outward triangles (its point queries agree with the box's), built on first use, once,
+  /// thread-safely: the contact search works on it, and a simulation asks every step.
+  const TriangleMesh& asMesh() const;
 
  private:
   Eigen::Vector3d h_;
+  /// Lazily built stand-in; a copy of the box starts without one.
+  struct LazyMesh {
+    LazyMesh() = default;
+    LazyMesh(const LazyMesh&) {}
+    LazyMesh& operator=(const LazyMesh&) { return *this; }
+    mutable std::once_flag once;
+    mutable std::shared_ptr<const TriangleMesh> mesh;
+    mutable std::atomic<const TriangleMesh*> ready{nullptr};  // set once the mesh exists (for memoryBytes)
+  } lazyMesh_;
 };
 
 /// Segment from (0,0,-h) to (0,0,+h) swept by a ball of radius r.

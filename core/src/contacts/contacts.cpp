@@ -16,30 +16,17 @@
 namespace unidist {
 namespace {
 
-/// The box as 12 outward triangles (the same solid: its point queries agree with the primitive's).
-std::unique_ptr<TriangleMesh> boxMesh(const Box& box) {
-  const Eigen::Vector3d h = box.halfExtents();
-  std::vector<Eigen::Vector3d> v;
-  for (int i = 0; i < 8; ++i) v.emplace_back(i & 1 ? h.x() : -h.x(), i & 2 ? h.y() : -h.y(), i & 4 ? h.z() : -h.z());
-  std::vector<TriangleMesh::Triangle> t = {{0, 2, 3}, {0, 3, 1}, {4, 5, 7}, {4, 7, 6}, {0, 1, 5}, {0, 5, 4},
-                                           {2, 6, 7}, {2, 7, 3}, {0, 4, 6}, {0, 6, 2}, {1, 3, 7}, {1, 7, 5}};
-  return std::make_unique<TriangleMesh>(std::move(v), std::move(t));
-}
-
-/// The model the contact routines work on: the model itself, or a box's mesh.
+/// The model the contact routines work on: the model itself, or a box's mesh stand-in (so that a box gets
+/// corner contacts).
 struct Working {
   const Model* model;
-  std::unique_ptr<TriangleMesh> owned;
+  bool standIn;
   const TriangleMesh* mesh() const { return dynamic_cast<const TriangleMesh*>(model); }
 };
 
 Working working(const Model& m) {
-  Working w{&m, nullptr};
-  if (const auto* box = dynamic_cast<const Box*>(&m)) {
-    w.owned = boxMesh(*box);
-    w.model = w.owned.get();
-  }
-  return w;
+  if (const auto* box = dynamic_cast<const Box*>(&m)) return {&box->asMesh(), true};
+  return {&m, false};
 }
 
 Contact fromDistance(const DistanceResult& r) {
@@ -139,8 +126,8 @@ std::vector<Contact> contacts(const Model& a, const Eigen::Isometry3d& X_WA, con
   }
   // A box's contacts name the primitive's features, not its stand-in mesh's triangles.
   for (Contact& c : out) {
-    if (wa.owned) c.featureA = a.closestPoint(X_WA.inverse() * c.pointA).feature;
-    if (wb.owned) c.featureB = b.closestPoint(X_WB.inverse() * c.pointB).feature;
+    if (wa.standIn) c.featureA = a.closestPoint(X_WA.inverse() * c.pointA).feature;
+    if (wb.standIn) c.featureB = b.closestPoint(X_WB.inverse() * c.pointB).feature;
   }
   contact::mergeDuplicates(out, 16 * std::max(tol, dirEps));
   if (options.maxContacts > 0) contact::reduceContacts(out, options.maxContacts);
