@@ -41,6 +41,21 @@ inline std::shared_ptr<const unidist::Model> meshBox(const Vec& h, int n = 2) {
   return std::make_shared<unidist::TriangleMesh>(s.vertices, s.triangles);
 }
 
+/// Two boxes of half extents h, centres ±offset along x, as one mesh of two closed components (a dumbbell
+/// without a bar: a non-convex model touching a floor in two separate places).
+inline std::shared_ptr<const unidist::Model> twoBoxes(const Vec& h, double offset) {
+  meshfix::Soup s = meshfix::gridBox(h, 1);
+  const std::size_t n = s.vertices.size(), t = s.triangles.size();
+  for (std::size_t i = 0; i < n; ++i) s.vertices.push_back(s.vertices[i] + Vec(offset, 0, 0));
+  for (std::size_t i = 0; i < n; ++i) s.vertices[i] -= Vec(offset, 0, 0);
+  for (std::size_t k = 0; k < t; ++k) {
+    auto tri = s.triangles[k];
+    for (auto& v : tri) v += static_cast<std::uint32_t>(n);
+    s.triangles.push_back(tri);
+  }
+  return std::make_shared<unidist::TriangleMesh>(s.vertices, s.triangles);
+}
+
 /// The lattice points of a box's faces (an n × n grid per face): a cloud with flat sides.
 inline std::shared_ptr<const unidist::Model> cloudBox(const Vec& h, int n = 4) {
   return std::make_shared<unidist::PointCloud>(meshfix::gridBox(h, n).vertices);

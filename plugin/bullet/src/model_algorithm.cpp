@@ -1,6 +1,7 @@
 #include "model_algorithm.h"
 
 #include "eigen_bullet.h"
+#include "regions.h"
 #include "unidist/bullet/shapes.h"
 #include "unidist/contact_manifold.h"
 
@@ -8,17 +9,22 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace unidist::bullet {
 
 /// What a pair keeps between steps.
 struct PairState {
   ContactCache cache;
+  std::vector<btPersistentManifold*> extra;  // own manifolds beyond the first, one per further contact region
   const Model* cachedA = nullptr;  // the cache belongs to these two models
   const Model* cachedB = nullptr;
 };
 
 namespace {
+
+/// Manifolds per pair: Bullet keeps 4 points in each.
+constexpr int kMaxRegions = 4;
 
 /// The other side as a core model: a unidist shape's own model, a triangle converted afresh (Bullet reuses
 /// one btTriangleShape object for every triangle it visits), anything else from the shared cache.
@@ -74,7 +80,27 @@ ModelAlgorithm::ModelAlgorithm(btPersistentManifold* manifold, const btCollision
 
 ModelAlgorithm::~ModelAlgorithm() {
   if (ownManifold_ && manifold_) m_dispatcher->releaseManifold(manifold_);
+  for (btPersistentManifold* m : state_->extra) m_dispatcher->releaseManifold(m);
 }
+
+namespace {
+
+/// Where a manifold's points are (world, on body 1); none when it is empty.
+bool manifoldCentre(const btPersistentManifold& m, Eigen::Vector3d& centre) {
+  if (m.getNumContacts() == 0) return false;
+  centre.setZero();
+  for (int i = 0; i < m.getNumContacts(); ++i) centre += toEigen(m.getContactPoint(i).getPositionWorldOnB());
+  centre /= m.getNumContacts();
+  return true;
+}
+
+Eigen::Vector3d regionCentre(const std::vector<Contact>& region) {
+  Eigen::Vector3d c = Eigen::Vector3d::Zero();
+  for (const Contact& k : region) c += 0.5 * (k.pointA + k.pointB);
+  return c / double(region.size());
+}
+
+}  // namespace
 
 void ModelAlgorithm::processCollision(const btCollisionObjectWrapper* w0, const btCollisionObjectWrapper* w1,
                                       const btDispatcherInfo& info, btManifoldResult* result) {
@@ -100,7 +126,7 @@ void ModelAlgorithm::processCollision(const btCollisionObjectWrapper* w0, const 
   }
   ManifoldOptions options;
   options.margin = threshold + double(result->m_closestPointDistanceThreshold) + other.outerMargin;
-  options.maxContacts = 4;
+  options.maxContacts = ownManifold_ ? 4 * kMaxRegions : 4;
   options.tolerance = pairTolerance(*da, *b->getCollisionShape());
 
   const long globalBefore = state_->cache.globalSearches, localBefore = state_->cache.localUpdates;
@@ -111,7 +137,7 @@ void ModelAlgorithm::processCollision(const btCollisionObjectWrapper* w0, const 
   registration_->globalSearches += state_->cache.globalSearches - globalBefore;
   registration_->localUpdates += state_->cache.localUpdates - localBefore;
   const bool aIsBody0 = manifold_->getBody0() == a->getCollisionObject();
-  for (const Contact& c : cs) {
+  auto add = [&](const Contact& c) {
     // B's surface grows by Bullet's outside margin: the gap shrinks by it and B's point moves toward A.
     const double d = c.distance - other.outerMargin;
     const Eigen::Vector3d pointB = c.pointB - other.outerMargin * c.normal;
@@ -119,12 +145,47 @@ void ModelAlgorithm::processCollision(const btCollisionObjectWrapper* w0, const 
       result->addContactPoint(toBullet(Eigen::Vector3d(-c.normal)), toBullet(pointB), btScalar(d));
     else  // shared manifold ordered (other, unidist): normal on the unidist shape pointing at the other
       result->addContactPoint(toBullet(c.normal), toBullet(c.pointA), btScalar(d));
+  };
+  if (!ownManifold_) {  // a compound's or a mesh's shared manifold: four points, its owner refreshes
+    for (const Contact& c : cs) add(c);
+    return;
   }
-  if (ownManifold_) result->refreshContactPoints();  // shared manifolds: their owner refreshes
+  // One manifold per contact region (a non-convex pair touching in separate places), each matched to the
+  // manifold that held the nearest points last step so that Bullet's warm starting carries over.
+  const std::vector<std::vector<Contact>> regions = contactRegions(cs, kMaxRegions);
+  std::vector<btPersistentManifold*> pool = {manifold_};
+  pool.insert(pool.end(), state_->extra.begin(), state_->extra.end());
+  while (pool.size() < regions.size()) {
+    btPersistentManifold* m = m_dispatcher->getNewManifold(manifold_->getBody0(), manifold_->getBody1());
+    state_->extra.push_back(m);
+    pool.push_back(m);
+  }
+  std::vector<char> used(pool.size(), 0);
+  for (const std::vector<Contact>& region : regions) {
+    const Eigen::Vector3d centre = regionCentre(region);
+    std::size_t best = pool.size();
+    double bestDistance = std::numeric_limits<double>::infinity();
+    for (std::size_t m = 0; m < pool.size(); ++m) {
+      if (used[m]) continue;
+      Eigen::Vector3d c;
+      const double dist = manifoldCentre(*pool[m], c) ? (c - centre).norm() : 1e300;
+      if (best == pool.size() || dist < bestDistance) best = m, bestDistance = dist;
+    }
+    used[best] = 1;
+    pool[best]->setContactBreakingThreshold(btScalar(threshold));
+    result->setPersistentManifold(pool[best]);
+    for (const Contact& c : region) add(c);
+    result->refreshContactPoints();
+  }
+  for (std::size_t m = 0; m < pool.size(); ++m)
+    if (!used[m]) pool[m]->clearManifold();  // a region that is gone leaves no ghost points
+  result->setPersistentManifold(manifold_);
 }
 
 void ModelAlgorithm::getAllContactManifolds(btManifoldArray& manifolds) {
-  if (ownManifold_ && manifold_) manifolds.push_back(manifold_);
+  if (!ownManifold_ || !manifold_) return;
+  manifolds.push_back(manifold_);
+  for (btPersistentManifold* m : state_->extra) manifolds.push_back(m);
 }
 
 btCollisionAlgorithm* ModelAlgorithm::CreateFunc::CreateCollisionAlgorithm(btCollisionAlgorithmConstructionInfo& ci,

@@ -148,6 +148,24 @@ TEST(BulletWorld, PegDropsThroughTheHoleOfAMeshBlock) {
   EXPECT_LT(std::abs(double(p.x())), 0.1);
 }
 
+TEST(BulletWorld, SeparateContactRegionsGetTheirOwnManifolds) {
+  TestWorld w;
+  w.add(std::make_unique<btStaticPlaneShape>(btVector3(0, 0, 1), 0), 0, at(0, 0, 0));
+  btRigidBody* feet = w.add(makeShape(test_models::twoBoxes(Vec(0.2, 0.3, 0.1), 1.0)), 1, at(0, 0, 0.15));
+  w.run(2.0);
+  int manifolds = 0, points = 0;
+  for (int m = 0; m < w.dispatcher.getNumManifolds(); ++m) {
+    const btPersistentManifold* mf = w.dispatcher.getManifoldByIndexInternal(m);
+    if (mf->getNumContacts() == 0) continue;
+    ++manifolds;
+    points += mf->getNumContacts();
+  }
+  EXPECT_EQ(manifolds, 2) << "one per foot";
+  EXPECT_EQ(points, 8) << "each foot's four corners";
+  EXPECT_NEAR(double(feet->getWorldTransform().getOrigin().z()), 0.1, 1e-3);
+  EXPECT_NEAR(double(feet->getWorldTransform().getBasis().getColumn(2).z()), 1.0, 1e-4);
+}
+
 /// The NURBS sphere dropped on a plane in a world scaled by `unit` (1: metres, 1000: millimetres).
 double restHeightAtScale(double unit) {
   unidist::Scene s;
