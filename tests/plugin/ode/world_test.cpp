@@ -176,6 +176,19 @@ TEST_F(OdeWorldTest, SphereSettlesInBowl) {
   EXPECT_LT(odetest::linearVelocity(ball).norm(), 0.02);
 }
 
+// A genus-1 mesh block must not be hulled: the peg drops through its square hole onto the floor.
+TEST_F(OdeWorldTest, PegDropsThroughTheHoleOfAMeshBlock) {
+  dCreatePlane(space, 0, 0, 1, 0);
+  dGeomID block = unidist::ode::createGeom(space, test_models::blockWithHole(1, 0.3, 1));
+  (void)block;  // static: no body, at the origin
+  dBodyID peg = attachBody(unidist::ode::createGeom(space, std::make_shared<unidist::Box>(Vec(0.2, 0.2, 0.6))),
+                           boxMass(1, 0.2), Vec(0.02, 0, 1.9));
+  run(3);
+  const Vec p = odetest::position(peg);
+  EXPECT_NEAR(p.z(), 0.6 - layer, layer + 3e-3) << "the peg stands on the floor inside the hole, not on a hull";
+  EXPECT_LT(std::abs(p.x()), 0.1);
+}
+
 TEST_F(OdeWorldTest, QuickStepAlsoRests) {
   dCreatePlane(space, 0, 0, 1, 0);
   dBodyID b = attachBody(unidist::ode::createGeom(space, nurbsSphere()), sphereMass(1, 1), Vec(0, 0, 1.3));
