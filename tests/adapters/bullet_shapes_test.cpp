@@ -17,6 +17,8 @@
 #include <BulletCollision/NarrowPhaseCollision/btPointCollector.h>
 #include <btBulletCollisionCommon.h>
 
+#include "bullet_reference.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -32,6 +34,7 @@ namespace {
 using unidist::InputError;
 using unidist::bullet::ConvertedShape;
 using unidist::bullet::modelFromBulletShape;
+using bullet_reference::bulletConvexDistance;
 
 /// Through the quaternion, renormalised in double: a float basis is orthonormal only to ~1e-7, and the core
 /// wants rigid poses.
@@ -41,23 +44,6 @@ Eigen::Isometry3d toEigen(const btTransform& X) {
   out.linear() = Eigen::Quaterniond(double(q.w()), double(q.x()), double(q.y()), double(q.z())).normalized().toRotationMatrix();
   out.translation() = Eigen::Vector3d(double(X.getOrigin().x()), double(X.getOrigin().y()), double(X.getOrigin().z()));
   return out;
-}
-
-/// Bullet's closest distance for a convex pair: its GJK (with EPA for overlaps) on the shapes' support maps and
-/// margins. The simplex solver's equal-vertex threshold (1e-4, squared) is lowered: with it GJK stops up to
-/// ~1e-3 early on curved shapes (cylinder, cone), which would hide the differences this test looks for.
-double bulletConvexDistance(const btConvexShape& a, const btTransform& X_WA, const btConvexShape& b,
-                            const btTransform& X_WB) {
-  btVoronoiSimplexSolver simplex;
-  simplex.setEqualVertexThreshold(0);
-  btGjkEpaPenetrationDepthSolver epa;
-  btGjkPairDetector gjk(&a, &b, &simplex, &epa);
-  btGjkPairDetector::ClosestPointInput input;
-  input.m_transformA = X_WA;
-  input.m_transformB = X_WB;
-  btPointCollector result;
-  gjk.getClosestPoints(input, result, nullptr);
-  return result.m_hasResult ? double(result.m_distance) : std::numeric_limits<double>::infinity();
 }
 
 /// Bullet's closest distance for any pair, through the dispatcher a world uses (GImpact registered): the

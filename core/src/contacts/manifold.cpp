@@ -196,6 +196,9 @@ bool apartWithoutQuery(const Model& a, const Eigen::Isometry3d& X_WA, const Mode
   return true;
 }
 
+/// Whether contacts() works on the model as a mesh (a box becomes its 12-triangle stand-in).
+bool meshLike(const Model& m) { return m.type() == ModelType::Box || m.type() == ModelType::Mesh; }
+
 std::vector<Contact> globalContacts(const Model& a, const Eigen::Isometry3d& X_WA, const Model& b,
                                     const Eigen::Isometry3d& X_WB, double margin, double tol, bool patch) {
   if (apartWithoutQuery(a, X_WA, b, X_WB, margin)) return {};
@@ -203,9 +206,10 @@ std::vector<Contact> globalContacts(const Model& a, const Eigen::Isometry3d& X_W
   co.margin = margin;
   co.tolerance = tol;
   std::vector<Contact> cs = contacts(a, X_WA, b, X_WB, co);
-  if (a.isConvex() && b.isConvex()) {
-    // Two convex solids: the global answer (exact minimum translation when they overlap, cheap for convex
-    // pairs) is the contact a solver wants first; the local ones (a box's corners) keep the patch.
+  if (a.isConvex() && b.isConvex() && meshLike(a) && meshLike(b)) {
+    // Two convex polytopes (boxes, convex meshes) go through the mesh feature search, which reports corners but
+    // not the global answer: add it (exact minimum translation when they overlap), the contact a solver wants
+    // first. Every other pair's contacts() already holds the global answer.
     DistanceOptions query;
     query.tolerance = tol;
     const DistanceResult d = distance(a, X_WA, b, X_WB, query);

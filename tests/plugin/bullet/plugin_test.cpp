@@ -2,14 +2,11 @@
 // Bullet's own sphere–sphere and box–box answers (distance, normal, points) in both argument orders; a unidist
 // shape meets every Bullet shape type a scene can hold without reaching the SDF path; Bullet's ray test sees
 // unidist shapes; the shapes reject local scaling and half-spaces; the warm start does the resting work.
+#include "adapters/bullet_reference.h"
 #include "plugin/models.h"
 #include "plugin/bullet/test_world.h"
 
 #include <BulletCollision/CollisionShapes/btHeightfieldTerrainShape.h>
-#include <BulletCollision/NarrowPhaseCollision/btGjkEpaPenetrationDepthSolver.h>
-#include <BulletCollision/NarrowPhaseCollision/btGjkPairDetector.h>
-#include <BulletCollision/NarrowPhaseCollision/btPointCollector.h>
-#include <BulletCollision/NarrowPhaseCollision/btVoronoiSimplexSolver.h>
 #include <BulletCollision/Gimpact/btGImpactCollisionAlgorithm.h>
 #include <BulletCollision/Gimpact/btGImpactShape.h>
 #include <gtest/gtest.h>
@@ -81,19 +78,6 @@ btTransform randomPose(std::mt19937_64& rng, double spread) {
   return at(u(rng), u(rng), u(rng), rot);
 }
 
-/// Bullet's GJK distance between two convex shapes (margins included): exact for separated shapes.
-double gjkDistance(const btConvexShape& a, const btTransform& XA, const btConvexShape& b, const btTransform& XB) {
-  btVoronoiSimplexSolver simplex;
-  btGjkEpaPenetrationDepthSolver epa;
-  btGjkPairDetector gjk(&a, &b, &simplex, &epa);
-  btGjkPairDetector::ClosestPointInput input;
-  input.m_transformA = XA;
-  input.m_transformB = XB;
-  btPointCollector out;
-  gjk.getClosestPoints(input, out, nullptr);
-  return double(out.m_distance);
-}
-
 /// Exact minimum translation depth of two overlapping boxes: the least overlap over the 15 separating axes.
 double satDepth(const btBoxShape& a, const btTransform& XA, const btBoxShape& b, const btTransform& XB) {
   const btVector3 ha = a.getHalfExtentsWithMargin(), hb = b.getHalfExtentsWithMargin();
@@ -134,7 +118,7 @@ void compareWithNative(btConvexShape& nativeA, btCollisionShape& unidistA, btCon
     btCollisionObject* ua = plugin.add(&unidistA, XA);
     btCollisionObject* nb = plugin.add(&nativeB, XB);
     Recorder ab = plugin.query(ua, nb), ba = plugin.query(nb, ua);
-    const double gjk = gjkDistance(exactA, XA, exactB, XB);
+    const double gjk = bullet_reference::bulletConvexDistance(exactA, XA, exactB, XB);
     if (gjk > 0.05) {  // apart: both orders report the exact distance (threshold 1) or nothing beyond it
       if (gjk > 0.9) continue;
       ++separated;
