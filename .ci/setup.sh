@@ -12,7 +12,10 @@ JOBS="${UNIDIST_JOBS:-2}"
 
 REQUIRED=(build-essential cmake pkg-config libeigen3-dev libbullet-dev libode-dev libosmesa6-dev libgtest-dev
           libbenchmark-dev nlohmann-json3-dev libcli11-dev python3)
-OPTIONAL=(libfcl-dev)  # benchmarks compare against FCL when it is there
+# Peers the benchmarks compare against when they are there: FCL (meshes), OpenCASCADE (NURBS; its CMake
+# package links TBB), gnuplot (the plots).
+OPTIONAL=(libfcl-dev libocct-modeling-algorithms-dev libocct-modeling-data-dev libocct-foundation-dev libtbb-dev
+          gnuplot-nox)
 
 installed() { dpkg-query -W -f='${Status}' "$1" 2>/dev/null | grep -q '^install ok installed$'; }
 
@@ -35,7 +38,7 @@ if command -v dpkg-query >/dev/null 2>&1; then
       fi
       if ((${#missing_optional[@]} > 0)); then
         apt-get install -y --no-install-recommends "${missing_optional[@]}" ||
-          echo "setup: optional ${missing_optional[*]} not installed (benchmarks run without the FCL peer)"
+          echo "setup: optional ${missing_optional[*]} not installed (benchmarks run without those peers)"
       fi
     elif ((${#missing[@]} > 0)); then
       echo "setup: missing Debian packages: ${missing[*]}" >&2
@@ -43,7 +46,7 @@ if command -v dpkg-query >/dev/null 2>&1; then
       echo "apt-get update && DEBIAN_FRONTEND=noninteractive apt-get install -y ${all_missing[*]}" >&2
       exit 1
     else
-      echo "setup: optional ${missing_optional[*]} missing (benchmarks run without the FCL peer);" \
+      echo "setup: optional ${missing_optional[*]} missing (benchmarks run without those peers);" \
            "as root: apt-get install -y ${missing_optional[*]}" >&2
     fi
   fi

@@ -3,6 +3,7 @@
 #include "adapters/error_of.h"
 #include "nurbs/patch_tree.h"
 #include "nurbs_fixtures.h"
+#include "nurbs_oracle.h"
 
 #include "unidist/nurbs.h"
 
@@ -277,64 +278,10 @@ TEST(NurbsClosestPoint, SignAndNormalFollowTheOutside) {
   EXPECT_FALSE(open->inside(Vec(0, 0, -2)));
 }
 
-/// Oracle for a surface without a closed form: nearest of a dense parameter grid, then projected Newton on the
-/// NURBS surface itself (a different path from the model: no Bézier patches, no tree).
-struct GridOracle {
-  const NurbsSurface& s;
-  std::vector<Vec> points;
-  std::vector<Eigen::Vector2d> params;
-  static constexpr int kN = 300;
-  explicit GridOracle(const NurbsSurface& surface) : s(surface) {
-    for (int i = 0; i <= kN; ++i)
-      for (int j = 0; j <= kN; ++j) {
-        const double u = s.uMin() + (s.uMax() - s.uMin()) * i / kN, v = s.vMin() + (s.vMax() - s.vMin()) * j / kN;
-        points.push_back(s.evaluate(u, v));
-        params.emplace_back(u, v);
-      }
-  }
-  double distance(const Vec& q) const {
-    std::size_t best = 0;
-    for (std::size_t k = 1; k < points.size(); ++k)
-      if ((points[k] - q).squaredNorm() < (points[best] - q).squaredNorm()) best = k;
-    Eigen::Vector2d x = params[best];
-    double value = (points[best] - q).norm();
-    for (int it = 0; it < 100; ++it) {
-      const SurfaceDerivatives d = s.derivatives(x[0], x[1]);
-      const Vec r = d.point - q;
-      Eigen::Matrix2d H;
-      H << d.du.dot(d.du) + r.dot(d.duu), d.du.dot(d.dv) + r.dot(d.duv), d.du.dot(d.dv) + r.dot(d.duv), d.dv.dot(d.dv) + r.dot(d.dvv);
-      const Eigen::Vector2d g(r.dot(d.du), r.dot(d.dv));
-      // A parameter at a bound of the domain whose gradient points outward stays there (edge minima).
-      const bool fixU = (x[0] <= s.uMin() && g[0] > 0) || (x[0] >= s.uMax() && g[0] < 0);
-      const bool fixV = (x[1] <= s.vMin() && g[1] > 0) || (x[1] >= s.vMax() && g[1] < 0);
-      Eigen::Vector2d step = H.determinant() > 0 && H(0, 0) > 0 ? Eigen::Vector2d(-H.inverse() * g) : Eigen::Vector2d(-g / (H.trace() + 1));
-      if (fixU || fixV) {
-        const int k = fixU ? 1 : 0;
-        step.setZero();
-        if (!(fixU && fixV)) step[k] = -g[k] / (H(k, k) > 0 ? H(k, k) : std::abs(H(k, k)) + 1);
-      }
-      bool improved = false;
-      for (int h = 0; h < 30 && !improved; ++h, step *= 0.5) {
-        Eigen::Vector2d y = x + step;
-        y[0] = std::clamp(y[0], s.uMin(), s.uMax());
-        y[1] = std::clamp(y[1], s.vMin(), s.vMax());
-        const double vy = (s.evaluate(y[0], y[1]) - q).norm();
-        if (vy < value) {
-          value = vy;
-          x = y;
-          improved = true;
-        }
-      }
-      if (!improved) break;
-    }
-    return value;
-  }
-};
-
 TEST(NurbsClosestPoint, WavyPatchAgainstDenseSamplingOracle) {
   const NurbsSurface surface = wavySurface();
   const auto m = model(surface, false);
-  const GridOracle oracle(surface);
+  const nurbs_fixtures::GridOracle oracle(surface);
   std::mt19937 rng(3);
   std::uniform_real_distribution<double> U(-1.6, 1.6);
   int misses = 0, oracleWorse = 0;
