@@ -13,6 +13,8 @@ class PointObjective final : public Objective {
  public:
   PointObjective(const Eigen::Vector3d& q, double modelSize) : q_(q), floor_(0.02 * modelSize) {}
   double value(const Eigen::Vector3d& p) const override { return (p - q_).norm(); }
+  double rank(const Eigen::Vector3d& p) const override { return (p - q_).squaredNorm(); }
+  double rankOf(double value) const override { return value < 0 ? -1.0 : value * value; }
   double lowerBound(const PatchNode& n) const override {
     return std::max(0.0, (q_ - n.ball.center).norm() - n.ball.radius);
   }

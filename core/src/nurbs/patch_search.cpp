@@ -18,19 +18,6 @@ struct Open {
   bool operator>(const Open& o) const { return lower > o.lower; }
 };
 
-bool touchesEdgeU(const PatchNode& n) { return n.s0 == 0 || n.s1 == 1; }  // an edge s = const of the patch
-bool touchesEdgeV(const PatchNode& n) { return n.t0 == 0 || n.t1 == 1; }
-
-/// Can the node hold a critical point of the objective (interior, or on a patch edge it touches)?
-bool mayHoldCritical(const PatchNode& n, const Objective& f) {
-  const Cone towards = f.criticalDirections(n.ball);
-  if (towards.all || n.normal.all || meetsEitherWay(n.normal, towards)) return true;
-  // Along an edge s = const the extremum of the edge curve needs the direction orthogonal to Sv; and vice versa.
-  if (touchesEdgeU(n) && canBeOrthogonal(n.cv, towards)) return true;
-  if (touchesEdgeV(n) && canBeOrthogonal(n.cu, towards)) return true;
-  return false;
-}
-
 }  // namespace
 
 PatchHit polish(const RationalBezierPatch& patch, int index, const Objective& f, double s, double t) {
@@ -112,9 +99,10 @@ SearchResult minimise(const PatchForest& forest, const std::vector<RationalBezie
   };
   auto offerCorners = [&](const PatchNode& n) {
     const double s[4] = {n.s0, n.s1, n.s0, n.s1}, t[4] = {n.t0, n.t0, n.t1, n.t1};
+    const double keep = f.rankOf(out.best.value + tieTolerance);
     for (int k = 0; k < 4; ++k) {
-      const double v = f.value(n.corners[static_cast<std::size_t>(k)]);
-      if (v < out.best.value + tieTolerance) offer({n.patch, s[k], t[k], v, n.corners[static_cast<std::size_t>(k)]});
+      const Eigen::Vector3d& c = n.corners[static_cast<std::size_t>(k)];
+      if (f.rank(c) < keep) offer({n.patch, s[k], t[k], f.value(c), c});
     }
   };
 
@@ -130,7 +118,7 @@ SearchResult minimise(const PatchForest& forest, const std::vector<RationalBezie
     offerCorners(*root);
     for (int i = 0; i <= root->net.degreeU; ++i)
       for (int j = 0; j <= root->net.degreeV; ++j) {
-        const double v = f.value(root->net.point(i, j));
+        const double v = f.rank(root->net.point(i, j));
         if (v < seedValue) {
           seedValue = v;
           seedNode = root.get();
@@ -155,7 +143,8 @@ SearchResult minimise(const PatchForest& forest, const std::vector<RationalBezie
       out.exhausted = true;
       break;
     }
-    if (!mayHoldCritical(n, f)) continue;  // its minimum is on its border: a neighbour's or a corner
+    // Its minimum is on its border (a neighbour's) or at a patch corner (evaluated as nodes appear).
+    if (!mayHoldCritical(n, f.criticalDirections(n.ball), false)) continue;
     const bool flat = !n.normal.all && n.normal.angle <= kLeafAngle && n.ball.radius <= kLeafFraction * f.leafScale(n.ball);
     if (flat || n.depth >= kMaxDepth || n.ball.radius <= tolerance) {
       // A small, nearly flat piece holds at most one minimum: when an earlier Newton run ended inside it,

@@ -17,6 +17,10 @@ class Objective {
  public:
   virtual ~Objective() = default;
   virtual double value(const Eigen::Vector3d& p) const = 0;
+  /// A cheaper function increasing with value (the search ranks candidates with it; no square root).
+  virtual double rank(const Eigen::Vector3d& p) const { return value(p); }
+  /// rank of a value (value → rank is increasing).
+  virtual double rankOf(double value) const { return value; }
   /// Proved: value >= this on the node's subpatch.
   virtual double lowerBound(const PatchNode& n) const = 0;
   /// Directions an interior critical point's normal must be parallel to (for the point query: q − S).

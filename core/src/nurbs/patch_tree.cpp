@@ -82,6 +82,11 @@ std::vector<Eigen::Vector3d> derivativeCoefficients(const RationalBezierPatch& p
   const auto idx = [q](int i, int j) { return static_cast<std::size_t>(i * (q + 1) + j); };
   const int R = 2 * p - 1, S = 2 * q;
   std::vector<Eigen::Vector3d> coef(static_cast<std::size_t>((R + 1) * (S + 1)), Eigen::Vector3d::Zero());
+  // The v-factors C(q,j) C(q,l) / C(2q,j+l) once (this runs for every new tree node).
+  std::vector<double> fv(static_cast<std::size_t>((q + 1) * (q + 1)));
+  for (int j = 0; j <= q; ++j)
+    for (int l = 0; l <= q; ++l)
+      fv[static_cast<std::size_t>(j * (q + 1) + l)] = binomial(q, j) * binomial(q, l) / binomial(S, j + l);
   for (int i = 0; i < p; ++i)
     for (int k = 0; k <= p; ++k) {
       const double fu = binomial(p - 1, i) * binomial(p, k) / binomial(R, i + k);
@@ -89,7 +94,7 @@ std::vector<Eigen::Vector3d> derivativeCoefficients(const RationalBezierPatch& p
         const std::size_t a = idx(i + 1, j), b = idx(i, j);
         for (int l = 0; l <= q; ++l) {
           const std::size_t c = idx(k, l);
-          const double f = fu * binomial(q, j) * binomial(q, l) / binomial(S, j + l) * w[c];
+          const double f = fu * fv[static_cast<std::size_t>(j * (q + 1) + l)] * w[c];
           coef[static_cast<std::size_t>((i + k) * (S + 1) + j + l)] += f * (w[a] * (P[a] - P[c]) - w[b] * (P[b] - P[c]));
         }
       }
@@ -103,34 +108,27 @@ Cone coneOfVectors(const std::vector<Eigen::Vector3d>& vectors) {
   // A coefficient that is zero in exact arithmetic (the collapsed edge of a pole) comes out of subdivision as
   // rounding noise pointing anywhere; counted, it would open the cone to everything near every pole (and how
   // often that happens depends on the model's scale). Vectors at rounding level of the largest are dropped.
+  // Axis: the mean of the unit vectors; angle: the widest of them, by one atan2 (this runs for every new tree
+  // node, so no trigonometry per vector).
   double largest = 0;
-  for (const Eigen::Vector3d& v : vectors) largest = std::max(largest, v.norm());
-  const double noise = 1e-12 * largest;
-  Cone c;
-  bool started = false;
-  for (const Eigen::Vector3d& v : vectors) {
-    const double n = v.norm();
-    if (n <= noise) continue;  // a zero vector adds nothing to a non-negative combination
-    const Eigen::Vector3d u = v / n;
-    if (!started) {
-      c = {u, 0.0, false};
-      started = true;
-      continue;
+  for (const Eigen::Vector3d& v : vectors) largest = std::max(largest, v.squaredNorm());
+  const double noise = 1e-24 * largest;  // squared: 1e-12 of the largest norm
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  for (const Eigen::Vector3d& v : vectors)
+    if (const double n2 = v.squaredNorm(); n2 > noise) sum += v / std::sqrt(n2);
+  const double length = sum.norm();
+  if (!(length > 0)) return Cone{};
+  const Eigen::Vector3d axis = sum / length;
+  double leastCos = 2;
+  const Eigen::Vector3d* widest = nullptr;
+  for (const Eigen::Vector3d& v : vectors)
+    if (const double n2 = v.squaredNorm(); n2 > noise) {
+      if (const double c = axis.dot(v) / std::sqrt(n2); c < leastCos) leastCos = c, widest = &v;
     }
-    const double phi = angleBetween(c.axis, u);
-    if (phi <= c.angle) continue;
-    const double grown = 0.5 * (c.angle + phi);
-    if (grown >= 0.5 * kPi) return Cone{};
-    // Rotate the axis toward u by (phi − angle)/2 in their common plane.
-    const Eigen::Vector3d w = (u - c.axis.dot(u) * c.axis).normalized();
-    const double turn = 0.5 * (phi - c.angle);
-    c.axis = (std::cos(turn) * c.axis + std::sin(turn) * w).normalized();
-    c.angle = grown;
-  }
-  if (!started) return Cone{};
-  c.angle += kAngleSlack;
-  if (c.angle >= 0.5 * kPi) return Cone{};
-  return c;
+  if (!(leastCos > 0)) return Cone{};  // a vector at π/2 or beyond: the cone would not be convex
+  const double angle = angleBetween(axis, *widest) + kAngleSlack;
+  if (angle >= 0.5 * kPi) return Cone{};
+  return Cone{axis, angle, false};
 }
 
 Cone crossCone(const Cone& cu, const Cone& cv) {
@@ -160,6 +158,14 @@ bool meetsEitherWay(const Cone& a, const Cone& b) {
 bool canBeOrthogonal(const Cone& a, const Cone& b) {
   if (a.all || b.all) return true;
   return std::abs(angleBetween(a.axis, b.axis) - 0.5 * kPi) <= a.angle + b.angle;
+}
+
+bool mayHoldCritical(const PatchNode& n, const Cone& towards, bool corners) {
+  if (towards.all || n.normal.all || meetsEitherWay(n.normal, towards)) return true;
+  const bool edgeU = n.s0 == 0 || n.s1 == 1, edgeV = n.t0 == 0 || n.t1 == 1;  // edges s = const, t = const
+  if (corners && edgeU && edgeV) return true;
+  // Along an edge s = const the extremum of the edge curve needs the direction orthogonal to Sv; and vice versa.
+  return (edgeU && canBeOrthogonal(n.cv, towards)) || (edgeV && canBeOrthogonal(n.cu, towards));
 }
 
 BoundingSphere ballOfNet(const std::vector<Eigen::Vector4d>& net) {

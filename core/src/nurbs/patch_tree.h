@@ -54,6 +54,11 @@ struct PatchNode {
 
 constexpr int kCachedDepth = 7;
 
+/// Can the node hold a point where some direction of `towards` is normal to the surface (an interior critical
+/// point), or orthogonal to the tangent along a patch edge the node touches (an edge critical point)? With
+/// `corners`, a node holding a patch corner always can (a corner extremum obeys no equation).
+bool mayHoldCritical(const PatchNode& n, const Cone& towards, bool corners);
+
 struct PatchForest {
   std::vector<std::unique_ptr<PatchNode>> roots;
   mutable std::atomic<std::size_t> nodes{0}, bytes{0};

@@ -1,10 +1,10 @@
-// Two solid NURBS models: best-first search over pairs of patch-tree nodes, each pair bounded below by GJK
-// between the convex hulls of the two subpatches' control points (each hull holds its subpatch: positive
-// weights). The bound is second order in the node size, so a smooth point contact is proved in ~log(1/tol)
-// levels with a handful of pairs per level, where the generic surface branch and bound (first order) needs
-// ~1/tolerance cells. Upper bounds are realised: GJK's hull witnesses projected onto their surfaces. Only a
-// proved separation is answered here; surfaces that meet, containment or an exhausted budget go to the
-// generic routine (and so to the translation-depth search). Internal.
+// Two solid NURBS models: the bound-and-subdivide search of Thomas et al. over pairs of patch-tree nodes.
+// Proved lower bounds (balls, then GJK between the convex hulls of the two subpatches' control points: positive
+// weights keep each subpatch in its hull) and normal-cone tests (a pair holds an extremal pair only if some
+// segment between them is normal to both surfaces, or orthogonal to a patch edge) prune; Newton on the
+// extremal-distance equations realises the minimum. Only a proved separation is answered here; surfaces that
+// meet within the tolerance and containment go to the generic routine (and so to the translation-depth
+// search); an exhausted budget answers with the bounds it proved (status bounded). Internal.
 #pragma once
 
 #include "pairs/pair_query.h"
