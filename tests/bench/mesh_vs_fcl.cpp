@@ -6,7 +6,7 @@
 //   env     FCL's own benchmark room and robot at random separated poses
 //   points  point → mesh: our closestPoint against FCL's distance to a sphere of radius 0
 //   clouds  mesh–cloud and cloud–cloud (no FCL counterpart): ours against brute force
-//   linked  only the linked 1k/20k and 20k/20k tori (for quick measurements; not part of the full run)
+//   linked  only the linked tori (for quick measurements; not part of the full run)
 // Every line is printed for people and again as a "csv," line (columns in the header lines). A query line
 // is OK when our answer is certified and within 1e-9 relative of FCL's. Usage:
 //   unidist_bench_mesh_vs_fcl [models dir] [fcl data dir] [build|tori|env|points|clouds|linked]
@@ -190,6 +190,9 @@ int main(int argc, char** argv) {
     toriGroup("torus_20k/torus_20k", *t20, *t20);
   }
   if (only == "linked") {  // the hardest cases alone (not in the default run)
+    toriGroup("torus 1k/1k", *g1, *g1, true);
+    toriGroup("torus 10k/10k", *g10, *g10, true);
+    toriGroup("torus 100k/100k", *g100, *g100, true);
     toriGroup("torus_1k/torus_20k", *t1, *t20, true);
     toriGroup("torus_20k/torus_20k", *t20, *t20, true);
   }

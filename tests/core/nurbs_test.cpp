@@ -285,7 +285,7 @@ TEST(NurbsClosestPoint, WavyPatchAgainstDenseSamplingOracle) {
   std::mt19937 rng(3);
   std::uniform_real_distribution<double> U(-1.6, 1.6);
   int misses = 0, oracleWorse = 0;
-  for (int k = 0; k < 1500; ++k) {
+  for (int k = 0; k < 10000; ++k) {
     // Near the surface (where the waves make several local minima) and around its boundary.
     const Vec q(U(rng), U(rng), 0.4 * U(rng));
     const SurfacePoint r = m->closestPoint(q);
@@ -297,7 +297,7 @@ TEST(NurbsClosestPoint, WavyPatchAgainstDenseSamplingOracle) {
     }
   }
   EXPECT_EQ(misses, 0);
-  EXPECT_LE(oracleWorse, 3);
+  EXPECT_LE(oracleWorse, 20);  // 0.2 %: the grid + Newton oracle, not the model
 }
 
 TEST(NurbsClosestPoint, ConcurrentQueriesAgree) {

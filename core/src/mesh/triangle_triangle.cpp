@@ -28,6 +28,25 @@ bool linesApart(const Eigen::Vector3d& p1, const Eigen::Vector3d& q1, const Eige
   return num * num >= limitSq * den2 * (1 + 8 * kEps);
 }
 
+// False only when the closest points of the edges' lines provably (rounding allowed for) fall outside an
+// edge, so that interiorEdgeEdge would find nothing: the normal equations' numerators against their
+// determinant, without a division or a square root. d1, d2: the edges' vectors; a = d1·d1 and e = d2·d2;
+// n1, n2: their 1-norms; r = p1 − p2. With b = d1·d2, c = d1·r, f = d2·r and D = ae − b², the line points are
+// at s = (bf − ce)/D on edge 1 and t = (af − bc)/D on edge 2; every product is bounded by n1 n2² |r|₁ or
+// n1² n2 |r|₁ (D by n1² n2²), so a margin of 64ε of those covers the rounding of the dot products and of the
+// numerators. Parallel or degenerate edges (D within its margin of 0) always pass.
+bool mayBeInterior(const Eigen::Vector3d& d1, double a, double n1, const Eigen::Vector3d& d2, double e, double n2,
+                   const Eigen::Vector3d& r) {
+  const double b = d1.dot(d2), c = d1.dot(r), f = d2.dot(r);
+  const double D = a * e - b * b;
+  const double q = n1 * n2, rr = r.lpNorm<1>();
+  const double mD = 64 * kEps * q * q;
+  if (!(D > mD)) return true;
+  const double ms = 64 * kEps * q * n2 * rr + mD, mt = 64 * kEps * q * n1 * rr + mD;
+  const double s = b * f - c * e, t = a * f - b * c;
+  return s >= -ms && s <= D + ms && t >= -mt && t <= D + mt;
+}
+
 // Closest points of the edges' lines when they lie inside both edges (x1 on [p1, q1], x2 on [p2, q2]); false
 // for parallel or degenerate edges and when either falls outside, where an endpoint is a closest point. The
 // critical point is found by Gram–Schmidt against the longer edge, which stays accurate for near-parallel ones.
@@ -146,13 +165,29 @@ TriangleTriangleClosest closestTriangleTriangle(const Eigen::Vector3d* a, const 
     r.distance = found ? std::sqrt(bestSq) : std::numeric_limits<double>::infinity();
     return r;
   }
+  // Per edge: its vector, box and 1-norm, once (each takes part in three pairs).
+  Eigen::Vector3d dA[3], dB[3], loA[3], hiA[3], loB[3], hiB[3];
+  double nA1[3], nB1[3], aa[3], bb[3];
+  for (int i = 0; i < 3; ++i) {
+    const Eigen::Vector3d &pa = a[i], &qa = a[(i + 1) % 3], &pb = b[i], &qb = b[(i + 1) % 3];
+    dA[i] = qa - pa;
+    dB[i] = qb - pb;
+    loA[i] = pa.cwiseMin(qa);
+    hiA[i] = pa.cwiseMax(qa);
+    loB[i] = pb.cwiseMin(qb);
+    hiB[i] = pb.cwiseMax(qb);
+    nA1[i] = dA[i].lpNorm<1>();
+    nB1[i] = dB[i].lpNorm<1>();
+    aa[i] = dA[i].squaredNorm();
+    bb[i] = dB[i].squaredNorm();
+  }
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) {
       const Eigen::Vector3d &p1 = a[i], &q1 = a[(i + 1) % 3], &p2 = b[j], &q2 = b[(j + 1) % 3];
       const double limit = std::min(bestSq, cutoffSq);
-      const Eigen::Vector3d gap =
-          (p2.cwiseMin(q2) - p1.cwiseMax(q1)).cwiseMax(p1.cwiseMin(q1) - p2.cwiseMax(q2)).cwiseMax(0.0);
+      const Eigen::Vector3d gap = (loB[j] - hiA[i]).cwiseMax(loA[i] - hiB[j]).cwiseMax(0.0);
       if (gap.squaredNorm() >= limit) continue;
+      if (!mayBeInterior(dA[i], aa[i], nA1[i], dB[j], bb[j], nB1[j], p1 - p2)) continue;
       if (linesApart(p1, q1, p2, q2, limit)) continue;
       Eigen::Vector3d x1, x2;
       if (!interiorEdgeEdge(p1, q1, p2, q2, x1, x2)) continue;

@@ -54,10 +54,10 @@ Traversal traverse(const Side& A, const Side& B, const Eigen::Isometry3d& X_AB, 
   const mesh::Rss* ra = A.rss && B.rss ? A.rss->data() : nullptr;
   const mesh::Rss* rb = ra ? B.rss->data() : nullptr;
 
-  // The cheap bounds: the ball–ball gap and the gap between A's box and B's box turned into A's frame.
+  // The cheap bounds: the gap between A's box and B's box turned into A's frame, and without RSS volumes the
+  // ball–ball gap (with them the balls changed the node-pair count by under 1 % on the linked tori and the
+  // env/rob poses, and cost 2 % of the time).
   auto cheapLower = [&](std::uint32_t i, std::uint32_t j) {
-    const Eigen::Vector3d cb = R * sb[j].center + t;
-    const double ball = (sa[i].center - cb).norm() - sa[i].radius - sb[j].radius;
     const mesh::BvhNode& x = na[i];
     const mesh::BvhNode& y = nb[j];
     const Eigen::Vector3d yc(0.5 * (y.lo[0] + y.hi[0]), 0.5 * (y.lo[1] + y.hi[1]), 0.5 * (y.lo[2] + y.hi[2]));
@@ -70,7 +70,10 @@ Traversal traverse(const Side& A, const Side& B, const Eigen::Isometry3d& X_AB, 
       const double g = below > 0 ? below : (above > 0 ? above : 0.0);
       s += g * g;
     }
-    return std::max(ball, std::sqrt(s));
+    const double box = std::sqrt(s);
+    if (ra) return box;
+    const Eigen::Vector3d cb = R * sb[j].center + t;
+    return std::max(box, (sa[i].center - cb).norm() - sa[i].radius - sb[j].radius);
   };
 
   struct Entry {
@@ -310,7 +313,7 @@ DistanceResult meshMesh(const PosedModel& a, const PosedModel& b, const QueryCon
     const mesh::BvhNode& x = ha.tree.nodes[i];
     const mesh::BvhNode& y = hb.tree.nodes[j];
     Eigen::Vector3d triB[mesh::kMaxLeafSize][3], nB[mesh::kMaxLeafSize], loB[mesh::kMaxLeafSize], hiB[mesh::kMaxLeafSize],
-        cB[mesh::kMaxLeafSize];
+        cB[mesh::kMaxLeafSize], offB[mesh::kMaxLeafSize][3];
     for (std::uint32_t l = 0; l < y.count; ++l) {
       const std::uint32_t tj = orderB[y.first + l];
       for (int k = 0; k < 3; ++k) triB[l][k] = X_AB * vb[tb[tj][k]];
@@ -318,6 +321,7 @@ DistanceResult meshMesh(const PosedModel& a, const PosedModel& b, const QueryCon
       loB[l] = triB[l][0].cwiseMin(triB[l][1]).cwiseMin(triB[l][2]);
       hiB[l] = triB[l][0].cwiseMax(triB[l][1]).cwiseMax(triB[l][2]);
       cB[l] = (triB[l][0] + triB[l][1] + triB[l][2]) / 3.0;
+      for (int k = 0; k < 3; ++k) offB[l][k] = triB[l][k] - cB[l];
     }
     // Every triangle pair gets a lower bound: the gap of the triangles' boxes, along the line of their
     // centroids (tight for triangles side by side at a distance) and along either normal (tight for facing
@@ -340,17 +344,21 @@ DistanceResult meshMesh(const PosedModel& a, const PosedModel& b, const QueryCon
       const Eigen::Vector3d loA = tA[0].cwiseMin(tA[1]).cwiseMin(tA[2]);
       const Eigen::Vector3d hiA = tA[0].cwiseMax(tA[1]).cwiseMax(tA[2]);
       const Eigen::Vector3d cA = (tA[0] + tA[1] + tA[2]) / 3.0;
+      const Eigen::Vector3d offA[3] = {tA[0] - cA, tA[1] - cA, tA[2] - cA};
       for (std::uint32_t l = 0; l < y.count; ++l) {
         const Eigen::Vector3d gap = (loB[l] - hiA).cwiseMax(loA - hiB[l]).cwiseMax(0.0);
-        double lb = gap.norm();
-        if (lb >= cut) continue;
+        const double gg = gap.squaredNorm();
+        if (gg >= cut * cut) continue;
+        double lb = std::sqrt(gg);
         const Eigen::Vector3d u = cB[l] - cA;
         const double len = u.norm();
         if (len > 0) {
-          const double reachA = std::max({u.dot(tA[0] - cA), u.dot(tA[1] - cA), u.dot(tA[2] - cA)});
-          const double reachB = std::min({u.dot(triB[l][0] - cB[l]), u.dot(triB[l][1] - cB[l]), u.dot(triB[l][2] - cB[l])});
-          lb = std::max(lb, (len * len + reachB - reachA) / len);
-          if (lb >= cut) continue;
+          // Gap along u, times len: compared before dividing.
+          const double reachA = std::max({u.dot(offA[0]), u.dot(offA[1]), u.dot(offA[2])});
+          const double reachB = std::min({u.dot(offB[l][0]), u.dot(offB[l][1]), u.dot(offB[l][2])});
+          const double scaled = len * len + reachB - reachA;
+          if (scaled >= cut * len) continue;
+          lb = std::max(lb, scaled / len);
         }
         const auto slabGap = [](const Eigen::Vector3d& n, const Eigen::Vector3d& o, const Eigen::Vector3d* t) {
           const double h0 = n.dot(t[0] - o), h1 = n.dot(t[1] - o), h2 = n.dot(t[2] - o);

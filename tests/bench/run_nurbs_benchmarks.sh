@@ -1,0 +1,30 @@
+#!/usr/bin/env bash
+# Regenerates docs/results/nurbs_vs_occt.{txt,csv} and nurbs_tolerance.png: unidist's NURBS queries beside
+# OpenCASCADE 7.6 (tests/bench/nurbs_vs_occt.cpp), and our time and error against the tolerance.
+# usage: tests/bench/run_nurbs_benchmarks.sh [build-dir] [points-per-model]
+#        (a Release build; needs libocct-modeling-algorithms-dev and libtbb-dev, and gnuplot for the plot)
+#        PLOT_ONLY=1 tests/bench/run_nurbs_benchmarks.sh    redraws the plot from the committed CSV
+set -euo pipefail
+ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
+BUILD="${1:-$ROOT/build}"
+POINTS="${2:-10000}"
+OUT="$ROOT/docs/results"
+mkdir -p "$OUT"
+if [ "${PLOT_ONLY:-0}" != 1 ]; then
+  cmake --build "$BUILD" --target unidist_bench_nurbs_vs_occt -j2
+  : > "$OUT/nurbs_vs_occt.txt"
+  for group in points pairs tolerance; do
+    "$BUILD/tests/bench/unidist_bench_nurbs_vs_occt" "$group" "$POINTS" | tee -a "$OUT/nurbs_vs_occt.txt"
+  done
+  grep -E '^(# )?csv,' "$OUT/nurbs_vs_occt.txt" | sed 's/^csv,//; s/^# csv,/# /' > "$OUT/nurbs_vs_occt.csv"
+fi
+
+if command -v gnuplot >/dev/null; then
+  TMP="$(mktemp -d)"
+  trap 'rm -rf "$TMP"' EXIT
+  # One file per placement: relative tolerance, median µs, error, bound width.
+  awk -F, '$1 == "tolerance" { f = ENVIRON["TMP"] "/" $2 ".dat"; gsub(/ /, "_", f); print $3, $4, $5, $6 > f }' \
+    TMP="$TMP" "$OUT/nurbs_vs_occt.csv"
+  gnuplot -e "dir='$TMP'; out='$OUT/nurbs_tolerance.png'" "$ROOT/tests/bench/plot_nurbs_tolerance.gp"
+fi
+echo "wrote $OUT/nurbs_vs_occt.{txt,csv} and nurbs_tolerance.png"
