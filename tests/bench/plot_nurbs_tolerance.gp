@@ -12,7 +12,7 @@ set key top right font ",8"
 files = system("ls ".dir."/*.dat")
 set ylabel "median query time (µs)"
 plot for [f in files] f using 1:2 with linespoints lw 2 title system("basename ".f." .dat | tr _ ' '")
-set ylabel "bound width (upper − lower), and |error| against the truth"
+set ylabel "bound width (upper − lower); 0 plotted at the floor"
 set key bottom right font ",8"
 plot for [f in files] f using 1:($4 > 0 ? $4 : 1e-17) with linespoints lw 2 title system("basename ".f." .dat | tr _ ' '"), \
      x * 2.5 with lines dt 2 lc rgb "black" title "tolerance (absolute)"

@@ -23,8 +23,8 @@ if command -v gnuplot >/dev/null; then
   TMP="$(mktemp -d)"
   trap 'rm -rf "$TMP"' EXIT
   # One file per placement: relative tolerance, median µs, error, bound width.
-  awk -F, '$1 == "tolerance" { f = ENVIRON["TMP"] "/" $2 ".dat"; gsub(/ /, "_", f); print $3, $4, $5, $6 > f }' \
-    TMP="$TMP" "$OUT/nurbs_vs_occt.csv"
+  awk -F, -v dir="$TMP" '$1 == "tolerance" { name = $2; gsub(/ /, "_", name); print $3, $4, $5, $6 > (dir "/" name ".dat") }' \
+    "$OUT/nurbs_vs_occt.csv"
   gnuplot -e "dir='$TMP'; out='$OUT/nurbs_tolerance.png'" "$ROOT/tests/bench/plot_nurbs_tolerance.gp"
 fi
 echo "wrote $OUT/nurbs_vs_occt.{txt,csv} and nurbs_tolerance.png"
