@@ -245,7 +245,8 @@ GjkResult gjk(const SupportFn& a, const SupportFn& b, const SupportPoint& start,
   return r;
 }
 
-ConvexDistance convexDistance(const SupportFn& a, const SupportFn& b, double tolerance, int maxIterations) {
+ConvexDistance convexDistance(const SupportFn& a, const SupportFn& b, double tolerance, int maxIterations,
+                              bool measurePenetration) {
   ConvexDistance out;
   ConvexScale scale;
   // Supports of D = A − B along ±x, ±y, ±z, computed only when needed: they give D's bounding box (its size
@@ -304,7 +305,7 @@ ConvexDistance convexDistance(const SupportFn& a, const SupportFn& b, double tol
   }
   bool useEpa = false;
   EpaResult e;
-  if (g.originInside || (!g.converged && g.lowerBound < 0)) {
+  if (measurePenetration && (g.originInside || (!g.converged && g.lowerBound < 0))) {
     if (axis.empty()) computeAxis();
     std::vector<SupportPoint> seeds(g.simplex, g.simplex + g.count);
     seeds.insert(seeds.end(), axis.begin(), axis.end());

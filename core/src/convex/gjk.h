@@ -45,8 +45,11 @@ struct ConvexDistance {
 /// converged: upperBound − lowerBound <= tolerance and the points are certified too (each within tolerance of
 /// its set's boundary). Not converged: the interval is still proved; the value lies in it.
 /// Touching sets give ~0 with bounds straddling 0; flat or needle-thin sets are handled. Thread-safe if the
-/// support maps are.
-ConvexDistance convexDistance(const SupportFn& a, const SupportFn& b, double tolerance, int maxIterations);
+/// support maps are. With measurePenetration false, overlapping sets skip EPA: the answer is GJK's (distance
+/// ~0, lowerBound the proved separating-axis bound, possibly −inf) — for callers that need only a lower bound
+/// on the distance of sets that cannot interpenetrate (surfaces).
+ConvexDistance convexDistance(const SupportFn& a, const SupportFn& b, double tolerance, int maxIterations,
+                              bool measurePenetration = true);
 
 // ---- Building blocks, shared by gjk.cpp, epa.cpp and the pair functions -------------------------------------
 

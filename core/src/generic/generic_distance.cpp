@@ -122,6 +122,7 @@ DistanceResult genericPair(const PosedModel& a, const PosedModel& b, const Query
   seed.provedDepth = -value;  // the deepest surface point must travel at least its depth
   seed.deepPoint = deepest->search.point;
   seed.direction = awayFromA;
+  deepenSeed(a, b, tol, seed);
   addPlaneEscapes(a, b, seed);
   DistanceResult depth = translationalDepth(a, b, ctx, seed);
   depth.iterations += iterations;

@@ -89,6 +89,15 @@ class DepthSearch {
     return out.lowerBound >= 0;
   }
 
+  /// A filter for escape tries along e: B moved along e just short of `length` must be proved apart. (A ray
+  /// can leave the overlap set and re-enter it, so this can skip a shorter exit; escapes are only upper bounds,
+  /// so a skip never makes the reported bounds wrong, and the depth's lower bound does not depend on it.)
+  bool mayBeat(const Eigen::Vector3d& e, double length) {
+    if (!std::isfinite(length)) return true;
+    DistanceResult probe;
+    return separatedAt((length - 0.25 * ctx_.tolerance) * e, probe);
+  }
+
   /// March along `axis` from s0 (every ray of the cone of half-angle alpha is proved to overlap up to s0):
   /// returns the distance up to which every ray of the cone is proved to stay in the overlap set.
   double march(const Eigen::Vector3d& axis, double alpha, double s0, Eigen::Vector3d& x, double cap) {
@@ -251,6 +260,12 @@ DistanceResult translationalDepth(const PosedModel& a, const PosedModel& b, cons
     if (e.length < best.length || (!best.hasContact && e.hasContact && e.length <= best.length + 0.25 * tol)) best = e;
   };
   consider(search.polishedExit(seed.direction, seed.deepPoint));
+  // In a deep overlap the deepest point's normal can point the long way out (B's point nearest A's middle
+  // leaves through A's far side); the line between the models' centres is the other natural first guess.
+  const Eigen::Vector3d centres = b.toWorld(b.model.localBoundingSphere().center) -
+                                  a.toWorld(a.model.localBoundingSphere().center);
+  if (centres.norm() > 0 && search.mayBeat(centres.normalized(), best.length))
+    consider(search.polishedExit(centres.normalized(), seed.deepPoint));
 
   double provedDepth = std::max(0.0, seed.provedDepth);
   std::priority_queue<OpenCone, std::vector<OpenCone>, std::greater<OpenCone>> open;
@@ -272,8 +287,11 @@ DistanceResult translationalDepth(const PosedModel& a, const PosedModel& b, cons
     const OpenCone top = open.top();
     open.pop();
     ++popped;
-    // Try the cone's axis for a better escape now and then (each try costs tens of separation tests).
-    if (top.cone.level <= 1 || popped % kTraceEvery == 0) consider(search.polishedExit(top.cone.axis, top.witness));
+    // Try the cone's axis for a better escape now and then (each try costs tens of separation tests), unless
+    // one test finds B not apart just short of the best escape along it: the axis then most likely exits
+    // later, while the cones around a shorter escape have axes that pass as they shrink.
+    if ((top.cone.level <= 1 || popped % kTraceEvery == 0) && search.mayBeat(top.cone.axis, best.length))
+      consider(search.polishedExit(top.cone.axis, top.witness));
     if (top.cone.level >= kMaxConeLevel) {
       open.push(top);  // as fine as directions go; keep its bound
       break;
@@ -300,6 +318,52 @@ DistanceResult translationalDepth(const PosedModel& a, const PosedModel& b, cons
   r.upperBound = -lower;
   settleStatus(r, tol);
   return r;
+}
+
+namespace {
+
+constexpr int kDeepenSteps = 200;
+
+/// One surface's deepest point inside the other solid, from the surface point nearest `start`.
+/// Returns the depth reached (0 when `start` is not near a point of `surface` inside `solid`).
+double deepenOn(const PosedModel& surface, const PosedModel& solid, const Eigen::Vector3d& start, double tolerance,
+                Eigen::Vector3d& deepest, Eigen::Vector3d& outward) {
+  Eigen::Vector3d p = surface.closestWorld(start).point;
+  SurfacePoint in = solid.closestWorld(p);
+  if (!(in.signedDistance < 0)) return 0;
+  double step = std::max(-in.signedDistance, tolerance);
+  for (int k = 0; k < kDeepenSteps && step > 1e-3 * tolerance; ++k) {
+    const Eigen::Vector3d q = surface.closestWorld(p - step * in.normal).point;
+    const SurfacePoint atQ = solid.closestWorld(q);
+    if (atQ.signedDistance < in.signedDistance) {
+      p = q;
+      in = atQ;
+      step *= 1.5;
+    } else {
+      step *= 0.5;
+    }
+  }
+  deepest = p;
+  outward = in.normal;
+  return -in.signedDistance;
+}
+
+}  // namespace
+
+void deepenSeed(const PosedModel& a, const PosedModel& b, double tolerance, OverlapSeed& seed) {
+  const Eigen::Vector3d start = seed.deepPoint;
+  Eigen::Vector3d p, n;
+  // B's surface inside A leaves along A's outward normal; A's surface inside B makes B leave against B's.
+  if (const double d = deepenOn(b, a, start, tolerance, p, n); d > seed.provedDepth) {
+    seed.provedDepth = d;
+    seed.deepPoint = p;
+    seed.direction = n;
+  }
+  if (const double d = deepenOn(a, b, start, tolerance, p, n); d > seed.provedDepth) {
+    seed.provedDepth = d;
+    seed.deepPoint = p;
+    seed.direction = -n;
+  }
 }
 
 void addPlaneEscapes(const PosedModel& a, const PosedModel& b, OverlapSeed& seed) {

@@ -44,6 +44,12 @@ namespace unidist::detail {
 /// deepest points found), and supporting-plane escapes along the axes and the deepest point's normal.
 OverlapSeed seedOverlap(const PosedModel& a, const PosedModel& b, const QueryContext& ctx);
 
+/// Raises seed.provedDepth by polishing the deepest surface points near seed.deepPoint: projected descent of
+/// the other solid's signed distance over each surface (its gradient is that solid's outward normal). Every
+/// value is realised (a surface point that deep in the other solid must travel that far to get out), so the
+/// result stays a proved lower bound; sampled surface searches are first order and stop short of it.
+void deepenSeed(const PosedModel& a, const PosedModel& b, double tolerance, OverlapSeed& seed);
+
 /// Lowers seed.knownEscape by supporting-plane escapes along the axes and seed.direction.
 void addPlaneEscapes(const PosedModel& a, const PosedModel& b, OverlapSeed& seed);
 

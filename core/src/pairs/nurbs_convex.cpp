@@ -22,7 +22,6 @@ constexpr int kMaxDepth = 40;
 // Nodes popped before the search reports a bounded answer.
 constexpr int kNodeBudget = 200000;
 // Descent steps polishing the deepest point of the convex solid inside the NURBS solid (two point queries each).
-constexpr int kDeepenSteps = 200;
 
 struct OpenNode {
   double lower;
@@ -124,32 +123,6 @@ Search closestSubpatch(const NurbsModel& m, const PosedModel& bInA, double toler
   }
   if (!open.empty()) s.lowerOpen = open.top().lower;
   return s;
-}
-
-/// The deepest point of B's surface inside A, polished by projected descent of A's signed distance over B's
-/// surface from the seed's point (its gradient is A's outward normal). Every value is realised (a point of B's
-/// surface that deep in A must travel that far to get out), so the improved depth stays a proved lower bound;
-/// the seed's short surface search is first order and stops far from the deepest value.
-void deepenSeed(const PosedModel& a, const PosedModel& b, double tolerance, OverlapSeed& seed) {
-  Eigen::Vector3d p = b.closestWorld(seed.deepPoint).point;
-  SurfacePoint inA = a.closestWorld(p);
-  double step = std::max(seed.provedDepth, tolerance);
-  for (int k = 0; k < kDeepenSteps && step > 1e-3 * tolerance; ++k) {
-    const Eigen::Vector3d q = b.closestWorld(p - step * inA.normal).point;
-    const SurfacePoint atQ = a.closestWorld(q);
-    if (atQ.signedDistance < inA.signedDistance) {
-      p = q;
-      inA = atQ;
-      step *= 1.5;
-    } else {
-      step *= 0.5;
-    }
-  }
-  if (-inA.signedDistance > seed.provedDepth) {
-    seed.provedDepth = -inA.signedDistance;
-    seed.deepPoint = p;
-    seed.direction = inA.normal;  // the way B leaves
-  }
 }
 
 }  // namespace

@@ -57,9 +57,9 @@ class PairSearch {
     int popped = 0;
     while (!open_.empty()) {
       const OpenPair top = open_.top();
-      if (top.lower >= best_.value - 0.5 * tolerance_ || (stopWhenApart_ && lower() > 0)) return Outcome::Proved;
       // Surfaces within the tolerance may cross: proving them apart is not this search's job.
       if (best_.value <= 0.5 * tolerance_) return Outcome::Touching;
+      if (top.lower >= best_.value - 0.5 * tolerance_ || (stopWhenApart_ && lower() > 0)) return Outcome::Proved;
       if (popped >= kPairBudget) return Outcome::Exhausted;
       open_.pop();
       ++popped;
@@ -74,7 +74,7 @@ class PairSearch {
       for (const Node* c : (splitA ? a_.forest() : b_.forest()).children(*n, arena_))
         splitA ? visit(c, top.b) : visit(top.a, c);
     }
-    return Outcome::Proved;
+    return best_.value <= 0.5 * tolerance_ ? Outcome::Touching : Outcome::Proved;
   }
 
   double best() const { return best_.value; }
@@ -168,7 +168,10 @@ class PairSearch {
     hullB_.clear();
     for (const Eigen::Vector4d& h : na->net.net) hullA_.push_back(h.head<3>() / h[3]);
     for (const Eigen::Vector4d& h : nb->net.net) hullB_.push_back(X_AB_ * Eigen::Vector3d(h.head<3>() / h[3]));
-    const ConvexDistance c = convexDistance(supportOf(hullA_), supportOf(hullB_), 0.25 * tolerance_, kHullGjkCap);
+    // Overlapping hulls prove nothing about surfaces (at distance >= 0): their depth (EPA) is not worth
+    // measuring; the separating-axis bound GJK leaves (negative) still orders the deeper overlaps first.
+    const ConvexDistance c =
+        convexDistance(supportOf(hullA_), supportOf(hullB_), 0.25 * tolerance_, kHullGjkCap, false);
     iterations_ += c.iterations;
     const double lower = std::min(c.lowerBound, c.distance) - margin;
     if (lower >= best_.value - 0.5 * tolerance_) {
@@ -221,7 +224,13 @@ DistanceResult nurbsNurbs(const PosedModel& a, const PosedModel& b, const QueryC
   const auto& cornerB = mb.forest().roots.front()->corners[0];
   const bool surfacesApart = outcome != Outcome::Touching && search.lower() > 0;
   const bool contained = surfacesApart && (mb.inside(X_AB.inverse() * cornerA) || ma.inside(X_AB * cornerB));
-  if (contained && ctx.overlapVerdictOnly) return overlapVerdict();
+  if (ctx.overlapVerdictOnly && (contained || outcome == Outcome::Touching)) {
+    // Surfaces within a fraction of the tolerance cannot be proved apart here; the realised gap still bounds
+    // the signed distance from above (crossing surfaces only lower it).
+    DistanceResult r = overlapVerdict();
+    if (!contained) r.distance = r.upperBound = search.best();
+    return r;
+  }
   if (!surfacesApart || contained) return genericPair(a, b, ctx);
 
   DistanceResult r;
