@@ -2,7 +2,9 @@
 // points within a of its core circle, so two separated tubes are (circle–circle distance) − a1 − a2 apart, and a
 // sphere (c, r) is dist(c, circle) − a − r from a torus. The circle–circle distance is a one-dimensional
 // minimisation (dense angle sampling, then golden-section refinement of every sampled local minimum);
-// closedFormError() checks it where a closed form exists. Benchmark-only.
+// closedFormError() checks it where a closed form exists. Interpenetrating tori with coplanar or coaxial core
+// circles: the circles' distance is 1-Lipschitz in the translation and grows at rate 1 along their closest-point
+// line, so the penetration depth (minimum translation) is exactly 2a minus it. Benchmark-only.
 #pragma once
 
 #include "core/nurbs_fixtures.h"
@@ -105,6 +107,8 @@ inline std::vector<Placement> placements() {
       torusPair("torus-torus side", pose(Vec(2.7, 0, 0))),
       torusPair("torus-torus tilted", pose(Vec(2.6, 0.3, 0.4), Eigen::AngleAxisd(0.7, Vec(1, 1, 0).normalized()))),
       torusPair("torus-torus linked offset", pose(Vec(1.0, 0.1, 0.05), upright)),
+      torusPair("torus-torus side overlap", pose(Vec(2.3, 0, 0))),
+      torusPair("torus-torus coaxial overlap", pose(Vec(0, 0, 0.35))),
       spherePair("torus-sphere above", Vec(0.3, 0.2, 0.9)),
       spherePair("torus-sphere in hole", Vec(0, 0, 0.05)),
   };

@@ -160,6 +160,8 @@ void runPairs() {
   std::printf("truth: circle-circle distance off its closed forms by at most %.1e\n", nurbs_truth::closedFormError());
   std::printf("# csv,pair,placement,truth,unidist_us,unidist_value,unidist_status,extss_us,extss_value,"
               "distss_us,distss_value\n");
+  int wrongOurs = 0, wrongExtss = 0, wrongDistss = 0, placements = 0;
+  const auto wrong = [](double value, double truth) { return !(std::abs(value - truth) <= 1e-6); };
   for (const Placement& p : nurbs_truth::placements()) {
     const unidist::NurbsModel a({p.a}, true), b({p.b}, true);
     unidist::DistanceOptions options;
@@ -188,7 +190,13 @@ void runPairs() {
                 p.name, p.truth, ours, unidist::toString(r.status), tOurs, extss, tExt, distss, tDist);
     std::printf("csv,pair,%s,%.17g,%.4g,%.17g,%s,%.4g,%.17g,%.4g,%.17g\n", p.name, p.truth, tOurs, ours,
                 unidist::toString(r.status), tExt, extss, tDist, distss);
+    ++placements;
+    wrongOurs += wrong(ours, p.truth);
+    wrongExtss += wrong(extss, p.truth);
+    wrongDistss += wrong(distss, p.truth);
   }
+  std::printf("wrong answers (off the truth by more than 1e-6) of %d placements: unidist %d, ExtremaSS %d, "
+              "DistShapeShape %d\n", placements, wrongOurs, wrongExtss, wrongDistss);
 }
 
 // ---- our dial ---------------------------------------------------------------------------------------------

@@ -18,7 +18,7 @@ namespace {
 // Surface branch and bound budget (field evaluations) per direction of the search.
 constexpr int kSurfaceBudget = 400000;
 // Evaluations a surface search may still spend after it has proved two solids overlap.
-constexpr int kSeedBudget = 4000;
+constexpr int kSeedBudget = 1000;
 // Evaluations per surface for a separation test of the depth search.
 constexpr int kVerdictBudget = 20000;
 
