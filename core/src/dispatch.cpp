@@ -7,6 +7,7 @@
 #include "pairs/mesh_convex.h"
 #include "pairs/mesh_mesh.h"
 #include "pairs/nurbs_convex.h"
+#include "pairs/nurbs_mesh.h"
 #include "pairs/nurbs_nurbs.h"
 #include "pairs/torus_pairs.h"
 #include "unidist/primitives.h"
@@ -72,6 +73,13 @@ DistanceResult meshPair(const PosedModel& a, const PosedModel& b, const QueryCon
   return meshCloud(a, b, ctx);
 }
 
+/// NURBS (a) against a mesh (b): a convex mesh against a solid NURBS keeps the NURBS–convex routine (GJK on the
+/// mesh's support map); every other pair walks both hierarchies.
+DistanceResult nurbsMeshPair(const PosedModel& a, const PosedModel& b, const QueryContext& ctx) {
+  if (a.model.isSolid() && b.model.isConvex()) return nurbsConvex(a, b, ctx);
+  return nurbsMesh(a, b, ctx);
+}
+
 DistanceResult dispatchByShape(const PosedModel& a, const PosedModel& b, const QueryContext& ctx);
 
 /// Sphere first: one point query is exact against any convex solid and for any separation; a penetration
@@ -104,6 +112,7 @@ class DispatchTable {
     add(T::Mesh, T::Mesh, &meshPair, "mesh-mesh-bvh");
     add(T::Mesh, T::PointCloud, &meshPair, "mesh-cloud-bvh");
     add(T::PointCloud, T::PointCloud, &meshPair, "cloud-cloud-bvh");
+    add(T::Nurbs, T::Mesh, &nurbsMeshPair, "nurbs-mesh-bvh");
   }
   const Cell& at(ModelType a, ModelType b) const { return cells_[index(a)][index(b)]; }
 

@@ -1,8 +1,10 @@
 // The NURBS pair routines (core/src/pairs/nurbs_convex.cpp, nurbs_nurbs.cpp) against analytic truth: the
 // exact rational sphere and torus, so every distance has a closed form (a ball against a solid is the
 // solid's signed distance at the centre minus the radius, also when penetrating a convex solid).
+#include "mesh_fixtures.h"
 #include "nurbs_fixtures.h"
 #include "unidist/distance.h"
+#include "unidist/mesh.h"
 #include "unidist/nurbs.h"
 #include "unidist/primitives.h"
 
@@ -186,6 +188,64 @@ TEST(NurbsNurbs, OverlappingSpheresGetTheirExactDepth) {
     expectBracket(r, d - 2, 1e-12);
     EXPECT_NEAR(r.distance, d - 2, 1e-9);
   }
+}
+
+// A NURBS ball against a mesh is the mesh's distance to the centre minus the radius (when apart): the long-double
+// point–triangle oracle of the mesh tests gives the truth. Solid (non-convex torus) and open (wavy sheet) meshes.
+TEST(NurbsMesh, BallAgainstMeshesMatchesThePointTriangleOracle) {
+  const double rs = 0.3;
+  const auto ball = solid(sphereSurface(rs));
+  const meshfix::Soup torus = meshfix::torus(1, 0.3, 24, 12), sheet = meshfix::wavySheet(12);
+  DistanceOptions opt;
+  opt.tolerance = 1e-10;
+  std::mt19937 rng(3);
+  for (const meshfix::Soup* soup : {&torus, &sheet}) {
+    const TriangleMesh mesh = meshfix::makeMesh(*soup);
+    int measured = 0;
+    for (int k = 0; k < 200 && measured < 15; ++k) {
+      const Eigen::Isometry3d XA = randomPose(rng, 1.5), XB = randomPose(rng, 0.5);
+      const Vec centreInMesh = XB.inverse() * XA.translation();
+      if (mesh.isSolid() && meshfix::bruteWinding(*soup, centreInMesh) > 0.5) continue;  // centre inside the torus
+      const double truth = meshfix::bruteDistance(*soup, centreInMesh) - rs;
+      if (truth < 1e-3) continue;
+      ++measured;
+      const DistanceResult r = distance(*ball, XA, mesh, XB, opt);
+      EXPECT_EQ(std::string(r.method), "nurbs-mesh-cones-gjk");
+      EXPECT_EQ(r.status, Status::Certified);
+      expectBracket(r, truth, 1e-12);
+      const DistanceResult back = distance(mesh, XB, *ball, XA, opt);  // the other order, the same answer
+      EXPECT_NEAR(back.distance, r.distance, 1e-12);
+    }
+    EXPECT_GE(measured, 10);
+  }
+}
+
+// An exact torus against a tessellation of the same torus (vertices on the surface, so the mesh lies inside
+// the smooth solid by at most its chord error): side by side, overlapping by 0.2. The depth lies in
+// [0.2 − chord error, 0.2]; the separation tests of the depth search run through the NURBS–mesh search.
+TEST(NurbsMesh, InterpenetratingTorusAndItsTessellation) {
+  const double R = 1, a = 0.25;
+  const auto torus = solid(torusSurface(R, a));
+  const int nu = 64, nv = 32;
+  const double chord = a * (1 - std::cos(M_PI / nv)) + (R + a) * (1 - std::cos(M_PI / nu));
+  const TriangleMesh mesh = meshfix::makeMesh(meshfix::torus(R, a, nu, nv));
+  DistanceOptions opt;
+  opt.tolerance = 1e-6;
+  Eigen::Isometry3d XB = Eigen::Isometry3d::Identity();
+  XB.translation() = Vec(2.3, 0, 0);
+  const DistanceResult r = distance(*torus, Eigen::Isometry3d::Identity(), mesh, XB, opt);
+  EXPECT_LT(r.upperBound, 0);
+  EXPECT_LE(r.lowerBound, -0.2 + chord + 1e-9);
+  EXPECT_GE(r.upperBound, -0.2 - 1e-9);
+  // The reported escape really separates (it is no shorter than the depth) and is within the tolerance of it.
+  EXPECT_GE(r.distance, -0.2 - opt.tolerance);
+  EXPECT_LE(r.distance, -0.2 + chord);
+  // Moved apart by 0.1, the surfaces are 0.1 apart where the outer rims face each other (vertices lie there).
+  XB.translation() = Vec(2.6, 0, 0);
+  const DistanceResult apart = distance(*torus, Eigen::Isometry3d::Identity(), mesh, XB, opt);
+  EXPECT_EQ(std::string(apart.method), "nurbs-mesh-cones-gjk");
+  EXPECT_EQ(apart.status, Status::Certified);
+  EXPECT_NEAR(apart.distance, 0.1, 1e-6);
 }
 
 }  // namespace
