@@ -2,8 +2,9 @@
 // (1) 50 mixed unidist bodies (sphere and box primitives, mesh boxes, point-cloud boxes, cylinders, capsules)
 // dropped in a pile on a btStaticPlaneShape, and (2) a 50-box pile once as unidist box primitives and once as
 // Bullet's native btBoxShape (Bullet's box–box and convex–plane algorithms), same poses, same world settings.
-// Each configuration runs `runs` times; the median steps/s is reported with the ratio native / unidist.
-// Usage: unidist_bench_bullet [steps=600] [runs=3]   (CSV on stdout)
+// Each configuration runs `runs` times (the two box piles interleaved, so that both see the same machine load); the
+// median steps/s is reported with the ratio native / unidist.
+// Usage: unidist_bench_bullet [steps=600] [runs=3] [boxes]   (CSV on stdout; "boxes": the box piles only)
 #include "plugin/models.h"
 #include "unidist/bullet/plugin.h"
 #include "unidist/bullet/shapes.h"
@@ -19,6 +20,7 @@
 #include <cstdlib>
 #include <functional>
 #include <memory>
+#include <string>
 #include <vector>
 
 namespace {
@@ -81,16 +83,19 @@ int main(int argc, char** argv) {
                                        meshBox(0.2), cloudBox(0.2), std::make_shared<unidist::Cylinder>(0.2, 0.2),
                                        std::make_shared<unidist::Capsule>(0.15, 0.1)};
   const ModelPtr box = std::make_shared<unidist::Box>(Vec(0.25, 0.25, 0.25));
-  auto measure = [&](const std::function<std::unique_ptr<btCollisionShape>(int)>& f) {
-    std::vector<double> r;
-    for (int k = 0; k < runs; ++k) r.push_back(stepsPerSecond(f, 50, steps));
-    return median(r);
-  };
-  const double mixedRate = measure([&](int i) { return unidist::bullet::makeShape(mixed[std::size_t(i) % mixed.size()]); });
-  const double unidistBoxes = measure([&](int) { return unidist::bullet::makeShape(box); });
-  const double nativeBoxes = measure([](int) { return std::make_unique<btBoxShape>(btVector3(0.25, 0.25, 0.25)); });
+  const bool boxesOnly = argc > 3 && std::string(argv[3]) == "boxes";
+  std::vector<double> mixedRuns{0}, unidistRuns, nativeRuns;
+  for (int k = 0; k < runs; ++k) {
+    if (!boxesOnly)
+      mixedRuns.push_back(stepsPerSecond([&](int i) { return unidist::bullet::makeShape(mixed[std::size_t(i) % mixed.size()]); },
+                                         50, steps));
+    unidistRuns.push_back(stepsPerSecond([&](int) { return unidist::bullet::makeShape(box); }, 50, steps));
+    nativeRuns.push_back(stepsPerSecond([](int) { return std::make_unique<btBoxShape>(btVector3(0.25, 0.25, 0.25)); }, 50, steps));
+  }
+  if (!boxesOnly) mixedRuns.erase(mixedRuns.begin());
+  const double mixedRate = median(mixedRuns), unidistBoxes = median(unidistRuns), nativeBoxes = median(nativeRuns);
   std::printf("case,steps_per_second\n");
-  std::printf("50 mixed unidist bodies,%.1f\n", mixedRate);
+  if (!boxesOnly) std::printf("50 mixed unidist bodies,%.1f\n", mixedRate);
   std::printf("50 boxes unidist,%.1f\n", unidistBoxes);
   std::printf("50 boxes bullet native,%.1f\n", nativeBoxes);
   std::printf("ratio native/unidist,%.2f\n", nativeBoxes / unidistBoxes);

@@ -3,8 +3,10 @@
 // a guard distance, and the reduction to the engine's contact count.
 #include "unidist/contact_manifold.h"
 
+#include "contacts/box_box_contacts.h"
 #include "contacts/reduce.h"
 #include "unidist/distance.h"
+#include "unidist/primitives.h"
 
 #include <algorithm>
 #include <cmath>
@@ -34,11 +36,11 @@ double defaultSimulationTolerance(const Model& a, const Model& b) {
 }
 
 /// Largest displacement of any point of the moving model between two relative poses (its bounding ball moved
-/// by the change of pose): |ΔX·c| + ‖R − R0‖₂·r with ‖R − R0‖₂ = 2 sin(angle/2).
+/// by the change of pose): |ΔX·c| + ‖R − R0‖₂·r. For rotations ‖R − R0‖₂ = 2 sin(angle/2) = ‖R − R0‖_F / √2: no
+/// angle to extract (asked for every pair every step), and no cancellation at small angles.
 double motionBound(const Eigen::Isometry3d& X0, const Eigen::Isometry3d& X1, const BoundingSphere& s) {
   const Eigen::Vector3d shift = X1 * s.center - X0 * s.center;
-  const Eigen::AngleAxisd turn(X1.linear() * X0.linear().transpose());
-  return shift.norm() + 2 * std::sin(0.5 * std::abs(turn.angle())) * s.radius;
+  return shift.norm() + (X1.linear() - X0.linear()).norm() * std::sqrt(0.5) * s.radius;
 }
 
 /// How far the pair has moved relative to each other since the cache was filled, measured on whichever model
@@ -54,12 +56,15 @@ double relativeMotion(const Model& a, const Model& b, const Eigen::Isometry3d& X
 void normalFromPoints(Contact& c) {
   const Eigen::Vector3d gap = c.pointB - c.pointA;
   const double scale = 1 + c.pointA.cwiseAbs().maxCoeff();
-  if (gap.norm() > 1e-12 * scale && c.distance != 0) c.normal = (gap / c.distance).normalized();
+  const double length = gap.norm();
+  if (length > 1e-12 * scale && c.distance != 0) c.normal = gap / std::copysign(length, c.distance);
 }
 
-/// The contact of the untilted pair at a point of A's surface: B's closest point to it (world frame).
-Contact remeasureFromA(const Eigen::Vector3d& pA_W, const Model& b, const Eigen::Isometry3d& X_WB, int featureA) {
-  const SurfacePoint s = b.closestPoint(X_WB.inverse() * pA_W);
+/// The contact of the untilted pair at a point of A's surface: B's closest point to it (world frame; X_BW is
+/// X_WB's inverse, computed once by the caller: this runs for every cached contact every step).
+Contact remeasureFromA(const Eigen::Vector3d& pA_W, const Model& b, const Eigen::Isometry3d& X_WB,
+                       const Eigen::Isometry3d& X_BW, int featureA) {
+  const SurfacePoint s = b.closestPoint(X_BW * pA_W);
   Contact c;
   c.pointA = pA_W;
   c.pointB = X_WB * s.point;
@@ -72,8 +77,9 @@ Contact remeasureFromA(const Eigen::Vector3d& pA_W, const Model& b, const Eigen:
 }
 
 /// The same from a point of B's surface (A's closest point to it).
-Contact remeasureFromB(const Eigen::Vector3d& pB_W, const Model& a, const Eigen::Isometry3d& X_WA, int featureB) {
-  const SurfacePoint s = a.closestPoint(X_WA.inverse() * pB_W);
+Contact remeasureFromB(const Eigen::Vector3d& pB_W, const Model& a, const Eigen::Isometry3d& X_WA,
+                       const Eigen::Isometry3d& X_AW, int featureB) {
+  const SurfacePoint s = a.closestPoint(X_AW * pB_W);
   Contact c;
   c.pointA = X_WA * s.point;
   c.pointB = pB_W;
@@ -85,15 +91,24 @@ Contact remeasureFromB(const Eigen::Vector3d& pB_W, const Model& a, const Eigen:
   return c;
 }
 
+/// The poses a local update needs, inverted and composed once per call rather than once per cached contact.
+struct UpdateFrames {
+  UpdateFrames(const Eigen::Isometry3d& X_WA, const Eigen::Isometry3d& X_WB, const Eigen::Isometry3d& X_AB0)
+      : X_WA(X_WA), X_WB(X_WB), X_AW(X_WA.inverse()), X_BW(X_WB.inverse()), X_WB_fromCachedA(X_WB * X_AB0.inverse()) {}
+  const Eigen::Isometry3d& X_WA;
+  const Eigen::Isometry3d& X_WB;
+  const Eigen::Isometry3d X_AW, X_BW;
+  const Eigen::Isometry3d X_WB_fromCachedA;  ///< a point of B cached in A's frame at the search → world now
+};
+
 /// A cached witness pair re-measured at the current poses: each point rides with its model and is re-projected
 /// onto the other; the deeper of the two readings wins (it is the one anchored at the sharper feature — a box
 /// corner's depth, not the zero a face point reads against that corner).
-Contact remeasure(const Contact& cached_A, const Model& a, const Eigen::Isometry3d& X_WA, const Model& b,
-                  const Eigen::Isometry3d& X_WB, const Eigen::Isometry3d& X_AB0) {
-  const Eigen::Vector3d pB_W = X_WB * (X_AB0.inverse() * cached_A.pointB);  // B's point rides with B
-  const Contact fromA = remeasureFromA(X_WA * cached_A.pointA, b, X_WB, cached_A.featureA);
+Contact remeasure(const Contact& cached_A, const Model& a, const Model& b, const UpdateFrames& f) {
+  const Eigen::Vector3d pB_W = f.X_WB_fromCachedA * cached_A.pointB;  // B's point rides with B
+  const Contact fromA = remeasureFromA(f.X_WA * cached_A.pointA, b, f.X_WB, f.X_BW, cached_A.featureA);
   if (!a.isSolid()) return fromA;  // no inside: B's point would read an unsigned distance
-  const Contact fromB = remeasureFromB(pB_W, a, X_WA, cached_A.featureB);
+  const Contact fromB = remeasureFromB(pB_W, a, f.X_WA, f.X_AW, cached_A.featureB);
   return fromB.distance < fromA.distance ? fromB : fromA;
 }
 
@@ -112,10 +127,11 @@ Contact swapped(const Contact& c) {
 /// the contact. Converges where the two surfaces' normals are opposite: a local minimum of signed distance.
 Contact refine(Contact c, const Model& a, const Eigen::Isometry3d& X_WA, const Model& b, const Eigen::Isometry3d& X_WB,
                double reach) {
+  const Eigen::Isometry3d X_AW = X_WA.inverse(), X_BW = X_WB.inverse();
   for (int round = 0; round < 4; ++round) {
-    const Eigen::Vector3d probe = X_WA.inverse() * (c.pointA + reach * c.normal);
+    const Eigen::Vector3d probe = X_AW * (c.pointA + reach * c.normal);
     const SurfacePoint s = a.closestPoint(probe);
-    const Contact next = remeasureFromA(X_WA * s.point, b, X_WB, s.feature);
+    const Contact next = remeasureFromA(X_WA * s.point, b, X_WB, X_BW, s.feature);
     if (!(next.distance < c.distance)) break;
     c = next;
   }
@@ -138,7 +154,7 @@ void fillPatch(const Model& a, const Eigen::Isometry3d& X_WA, const Model& b, co
       const Eigen::Matrix3d tilt = Eigen::AngleAxisd(sign * kPatchTilt, axis).toRotationMatrix();
       const Eigen::Vector3d dir_A = X_WA.linear().transpose() * (tilt.transpose() * n);
       const Eigen::Vector3d pA = a.support(dir_A);
-      Contact c = remeasureFromA(X_WA * pA, b, X_WB, a.closestPoint(pA).feature);
+      Contact c = remeasureFromA(X_WA * pA, b, X_WB, X_WB.inverse(), a.closestPoint(pA).feature);
       if (c.distance > margin) continue;
       found.push_back(refine(c, a, X_WA, b, X_WB, reach));
     }
@@ -201,6 +217,13 @@ bool meshLike(const Model& m) { return m.type() == ModelType::Box || m.type() ==
 
 std::vector<Contact> globalContacts(const Model& a, const Eigen::Isometry3d& X_WA, const Model& b,
                                     const Eigen::Isometry3d& X_WB, double margin, double tol, bool patch) {
+  if (a.type() == ModelType::Box && b.type() == ModelType::Box) {
+    // Clipping gives the whole contact polygon with exact depths: no feature search, no patch to fill.
+    std::vector<Contact> cs = contact::boxBoxContacts(static_cast<const Box&>(a), X_WA, static_cast<const Box&>(b),
+                                                      X_WB, margin, tol, 0);
+    contact::mergeDuplicates(cs, 4 * tol);
+    return cs;
+  }
   if (apartWithoutQuery(a, X_WA, b, X_WB, margin)) return {};
   ContactOptions co;
   co.margin = margin;
@@ -251,8 +274,9 @@ std::vector<Contact> contactsAt(const Model& a, const Eigen::Isometry3d& X_WA, c
   std::vector<Contact> out;
   if (cache && cache->valid && relativeMotion(a, b, cache->X_AB, X_AB) <= cache->guard) {
     ++cache->localUpdates;
+    const UpdateFrames frames(X_WA, X_WB, cache->X_AB);
     for (const Contact& c : cache->contacts) {
-      const Contact now = remeasure(c, a, X_WA, b, X_WB, cache->X_AB);
+      const Contact now = remeasure(c, a, b, frames);
       if (now.distance <= margin) out.push_back(now);
     }
     contact::mergeDuplicates(out, 4 * tol);

@@ -19,15 +19,16 @@ Eigen::Vector3d middle(const Contact& c) { return 0.5 * (c.pointA + c.pointB); }
 
 void mergeDuplicates(std::vector<Contact>& cs, double eps) {
   std::sort(cs.begin(), cs.end(), deeperFirst);
-  std::vector<Contact> kept;
-  kept.reserve(cs.size());
-  for (const Contact& c : cs) {
-    const bool duplicate = std::any_of(kept.begin(), kept.end(), [&](const Contact& k) {
+  // Compacted in place (the kept ones are a prefix): the simulation merges a few contacts per pair every step.
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < cs.size(); ++i) {
+    const Contact& c = cs[i];
+    const bool duplicate = std::any_of(cs.begin(), cs.begin() + long(kept), [&](const Contact& k) {
       return (k.pointA - c.pointA).norm() <= eps && (k.pointB - c.pointB).norm() <= eps;
     });
-    if (!duplicate) kept.push_back(c);
+    if (!duplicate) cs[kept++] = c;
   }
-  cs.swap(kept);
+  cs.resize(kept);
 }
 
 void reduceContacts(std::vector<Contact>& cs, int maxContacts) {

@@ -21,36 +21,42 @@ Vector3d boxSupport(const Vector3d& h, const Vector3d& d) {
 
 }  // namespace
 
+BoxAxes boxSeparatingAxes(const Vector3d& halfA, const Vector3d& halfB, const Matrix3d& R_AB, const Vector3d& p_AB) {
+  // overlap(L) = min(h_D(L), h_D(−L)) for D = A − B; the smallest over all face normals of D is the depth. Every
+  // unit L gives overlap >= depth, so an edge–edge axis whose direction is blurred by rounding (nearly parallel
+  // edges) can never undercut the true answer; it only stands for a sliver face of D whose support value it
+  // reproduces to first order.
+  BoxAxes out;
+  auto test = [&](const Vector3d& L, BoxAxis::Kind kind, int i, int j) {
+    const double rA = halfA.dot(L.cwiseAbs());
+    const double rB = halfB.dot((R_AB.transpose() * L).cwiseAbs());
+    const double s = L.dot(p_AB);
+    const double overlap = rA + rB - std::abs(s);
+    if (overlap < out.smallest.overlap)  // strict: on ties face normals (tested first) win
+      out.smallest = BoxAxis{kind, i, j, s >= 0 ? L : Vector3d(-L), overlap};
+  };
+  for (int i = 0; i < 3; ++i) test(Vector3d::Unit(i), BoxAxis::Kind::FaceOfA, i, 0);
+  for (int j = 0; j < 3; ++j) test(R_AB.col(j), BoxAxis::Kind::FaceOfB, 0, j);
+  out.smallestFace = out.smallest;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      const Vector3d L = Vector3d::Unit(i).cross(R_AB.col(j));
+      const double len = L.norm();
+      if (len > 1e-150) test(L / len, BoxAxis::Kind::EdgePair, i, j);  // exactly parallel edges add no face to D
+    }
+  return out;
+}
+
 ConvexDistance boxBox(const Vector3d& halfA, const Eigen::Isometry3d& X_WA, const Vector3d& halfB,
                       const Eigen::Isometry3d& X_WB, double tolerance) {
   const Matrix3d R_WA = X_WA.linear();
   const Matrix3d R_AB = R_WA.transpose() * X_WB.linear();                   // columns: B's axes in A
   const Vector3d p_AB = R_WA.transpose() * (X_WB.translation() - X_WA.translation());  // B's centre in A
 
-  // Separating-axis test over the 15 candidate directions, in A's frame. overlap(L) = min(h_D(L), h_D(−L)) for
-  // D = A − B; the smallest over all face normals of D is the depth. Every unit L gives overlap >= depth, so an
-  // edge–edge axis whose direction is blurred by rounding (nearly parallel edges) can never undercut the true
-  // answer; it only stands for a sliver face of D whose support value it reproduces to first order.
-  double minOverlap = kInf;
-  Vector3d axis = Vector3d::UnitX();
-  auto test = [&](const Vector3d& L) {
-    const double rA = halfA.dot(L.cwiseAbs());
-    const double rB = halfB.dot((R_AB.transpose() * L).cwiseAbs());
-    const double s = L.dot(p_AB);
-    const double overlap = rA + rB - std::abs(s);
-    if (overlap < minOverlap) {  // strict: on ties face normals (tested first) win
-      minOverlap = overlap;
-      axis = s >= 0 ? L : Vector3d(-L);
-    }
-  };
-  for (int i = 0; i < 3; ++i) test(Vector3d::Unit(i));
-  for (int j = 0; j < 3; ++j) test(R_AB.col(j));
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) {
-      const Vector3d L = Vector3d::Unit(i).cross(R_AB.col(j));
-      const double len = L.norm();
-      if (len > 1e-150) test(L / len);  // exactly parallel edges add no face to D
-    }
+  // Separating-axis test over the 15 candidate directions, in A's frame.
+  const BoxAxis best = boxSeparatingAxes(halfA, halfB, R_AB, p_AB).smallest;
+  const double minOverlap = best.overlap;
+  const Vector3d axis = best.direction;
 
   const SupportFn supportA = [&](const Vector3d& d) { return boxSupport(halfA, d); };
   ConvexDistance out;

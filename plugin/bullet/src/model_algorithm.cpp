@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 namespace unidist::bullet {
 
@@ -28,32 +29,67 @@ constexpr int kMaxRegions = 4;
 
 /// The other side as a core model: a unidist shape's own model, a triangle converted afresh (Bullet reuses
 /// one btTriangleShape object for every triangle it visits), anything else from the shared cache.
-ConvertedShape otherModel(const btCollisionShape& shape, Registration::Impl& registration) {
-  if (const ModelShapeData* d = shapeData(&shape)) return ConvertedShape{d->model(), 0, Eigen::Isometry3d::Identity()};
+ConvertedShape otherModel(const btCollisionShape& shape, const ModelShapeData* data, Registration::Impl& registration) {
+  if (data) return ConvertedShape{data->model(), 0, Eigen::Isometry3d::Identity()};
   if (shape.getShapeType() == TRIANGLE_SHAPE_PROXYTYPE) return modelFromBulletShape(shape);
   return registration.shapeCache.get(shape);
 }
 
+/// Distance from the shape's origin to its farthest point: a unidist model's own bounding ball (data: the shape's
+/// unidist data, null for Bullet's shapes, whose getBoundingSphere goes through getAabb: six support queries).
+double reach(const btCollisionShape& shape, const ModelShapeData* data) {
+  if (data) {
+    const BoundingSphere s = data->model()->localBoundingSphere();
+    return s.center.norm() + s.radius;
+  }
+  btVector3 center;
+  btScalar radius;
+  shape.getBoundingSphere(center, radius);
+  return double(center.length()) + double(radius);
+}
+
 /// How far the two objects can approach each other during the next step (relative speed bound × dt): contacts
 /// up to that distance are reported as speculative ones so that a fast body meets the solver before it tunnels.
-double speculativeDistance(const btCollisionObjectWrapper* a, const btCollisionObjectWrapper* b, double dt) {
+double speculativeDistance(const btCollisionObjectWrapper* a, const ModelShapeData* da,
+                           const btCollisionObjectWrapper* b, const ModelShapeData* db, double dt) {
   double speed = 0;
   Eigen::Vector3d v = Eigen::Vector3d::Zero();
-  for (const btCollisionObjectWrapper* w : {a, b}) {
+  for (const auto& [w, data] : {std::pair{a, da}, std::pair{b, db}}) {
     const btRigidBody* body = btRigidBody::upcast(w->getCollisionObject());
     if (!body) continue;
-    btVector3 center;
-    btScalar radius;
-    w->getCollisionShape()->getBoundingSphere(center, radius);
     const Eigen::Vector3d lin = toEigen(body->getLinearVelocity());
     v += (w == a) ? lin : Eigen::Vector3d(-lin);
-    speed += toEigen(body->getAngularVelocity()).norm() * (double(center.length()) + double(radius));
+    const double spin = toEigen(body->getAngularVelocity()).norm();
+    if (spin > 0) speed += spin * reach(*w->getCollisionShape(), data);
   }
   return (v.norm() + speed) * dt;
 }
 
-double pairTolerance(const ModelShapeData& a, const btCollisionShape& other) {
-  const ModelShapeData* b = shapeData(&other);
+/// A proved lower bound on the distance between the two shapes: the largest gap between their world bounding boxes
+/// along an axis (negative where the boxes overlap), less a pad for the rounding of the boxes to btScalar.
+double aabbGap(const btCollisionObjectWrapper& a, const btCollisionObjectWrapper& b) {
+  btVector3 minA, maxA, minB, maxB;
+  a.getCollisionShape()->getAabb(a.getWorldTransform(), minA, maxA);
+  b.getCollisionShape()->getAabb(b.getWorldTransform(), minB, maxB);
+  double gap = -std::numeric_limits<double>::infinity(), scale = 1;
+  for (int i = 0; i < 3; ++i) {
+    gap = std::max({gap, double(minB[i]) - double(maxA[i]), double(minA[i]) - double(maxB[i])});
+    scale = std::max({scale, std::abs(double(minA[i])), std::abs(double(maxA[i])), std::abs(double(minB[i])),
+                      std::abs(double(maxB[i]))});
+  }
+  return gap - 1e-5 * scale;
+}
+
+/// What manifoldContacts does to the cache of a pair without contacts: no lift next step, and the last search
+/// (made lifted) is not reused.
+void forgetLift(ContactCache& cache) {
+  if (!cache.hasLift) return;
+  cache.hasLift = false;
+  cache.valid = false;
+}
+
+/// b: the other shape's unidist data, null for Bullet's shapes.
+double pairTolerance(const ModelShapeData& a, const ModelShapeData* b) {
   const double ta = a.tolerance(), tb = b ? b->tolerance() : -1;
   if (ta >= 0 && tb >= 0) return std::min(ta, tb);
   return ta >= 0 ? ta : tb;
@@ -108,7 +144,8 @@ void ModelAlgorithm::processCollision(const btCollisionObjectWrapper* w0, const 
   const btCollisionObjectWrapper* b = swapped_ ? w0 : w1;
   const ModelShapeData* da = shapeData(a->getCollisionShape());
   if (!da) return;  // a table cell reached with a shape that is not ours: nothing to say about it
-  const ConvertedShape other = otherModel(*b->getCollisionShape(), *registration_);
+  const ModelShapeData* db = shapeData(b->getCollisionShape());  // once: the lookups below would each cast again
+  const ConvertedShape other = otherModel(*b->getCollisionShape(), db, *registration_);
   const Model& modelA = *da->model();
   const Model& modelB = *other.model;
   if (state_->cachedA != &modelA || state_->cachedB != &modelB) {
@@ -118,7 +155,7 @@ void ModelAlgorithm::processCollision(const btCollisionObjectWrapper* w0, const 
   }
 
   result->setPersistentManifold(manifold_);  // before any addContactPoint (closest-point queries need it too)
-  const double speculative = speculativeDistance(a, b, double(info.m_timeStep));
+  const double speculative = speculativeDistance(a, da, b, db, double(info.m_timeStep));
   double threshold = double(manifold_->getContactBreakingThreshold());
   if (ownManifold_) {
     threshold = double(baseThreshold_) + speculative;
@@ -127,7 +164,12 @@ void ModelAlgorithm::processCollision(const btCollisionObjectWrapper* w0, const 
   ManifoldOptions options;
   options.margin = threshold + double(result->m_closestPointDistanceThreshold) + other.outerMargin;
   options.maxContacts = ownManifold_ ? 4 * kMaxRegions : 4;
-  options.tolerance = pairTolerance(*da, *b->getCollisionShape());
+  options.tolerance = pairTolerance(*da, db);
+  if (aabbGap(*a, *b) > options.margin) {  // most pairs the broadphase hands over: proved apart, no query
+    forgetLift(state_->cache);
+    if (ownManifold_) clearOwnManifolds();
+    return;
+  }
 
   const long globalBefore = state_->cache.globalSearches, localBefore = state_->cache.localUpdates;
   // A Bullet capsule, cylinder or cone along x or y is a unidist one along z posed by X_SM.
@@ -148,6 +190,15 @@ void ModelAlgorithm::processCollision(const btCollisionObjectWrapper* w0, const 
   };
   if (!ownManifold_) {  // a compound's or a mesh's shared manifold: four points, its owner refreshes
     for (const Contact& c : cs) add(c);
+    return;
+  }
+  if (cs.empty()) {  // most pairs the broadphase hands over: no regions to match, nothing to allocate
+    clearOwnManifolds();
+    return;
+  }
+  if (cs.size() <= 4 && state_->extra.empty()) {  // one region, and the own manifold is the only one to hold it
+    for (const Contact& c : cs) add(c);
+    result->refreshContactPoints();
     return;
   }
   // One manifold per contact region (a non-convex pair touching in separate places), each matched to the
@@ -180,6 +231,12 @@ void ModelAlgorithm::processCollision(const btCollisionObjectWrapper* w0, const 
   for (std::size_t m = 0; m < pool.size(); ++m)
     if (!used[m]) pool[m]->clearManifold();  // a region that is gone leaves no ghost points
   result->setPersistentManifold(manifold_);
+}
+
+void ModelAlgorithm::clearOwnManifolds() {
+  if (manifold_->getNumContacts() > 0) manifold_->clearManifold();
+  for (btPersistentManifold* m : state_->extra)
+    if (m->getNumContacts() > 0) m->clearManifold();
 }
 
 void ModelAlgorithm::getAllContactManifolds(btManifoldArray& manifolds) {

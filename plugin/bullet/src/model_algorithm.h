@@ -42,6 +42,9 @@ class ModelAlgorithm final : public btActivatingCollisionAlgorithm {
   };
 
  private:
+  /// Empties the own manifold and the extra ones (a pair with no contacts this step leaves no ghost points).
+  void clearOwnManifolds();
+
   btPersistentManifold* manifold_;
   bool ownManifold_ = false;
   bool swapped_;
