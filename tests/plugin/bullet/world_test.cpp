@@ -40,12 +40,12 @@ void expectRests(TestWorld& w, const Dropped& d, double top) {
   w.run(4.0);
   const double z4 = double(body->getWorldTransform().getOrigin().z());
   const btVector3 xy4 = body->getWorldTransform().getOrigin();
-  w.run(6.0);
+  w.run(10.0);
   const btTransform& X = body->getWorldTransform();
   const double z = double(X.getOrigin().z());
   SCOPED_TRACE(d.name);
   EXPECT_NEAR(z, top + d.restHalfHeight, 1e-3 * d.size);
-  EXPECT_NEAR(z, z4, 1e-4 * d.size) << "drift over 6 s";
+  EXPECT_NEAR(z, z4, 1e-4 * d.size) << "drift over 10 s";
   EXPECT_LT(double((X.getOrigin() - xy4).length()), 1e-3 * d.size) << "sideways drift";
   EXPECT_LT(double(body->getLinearVelocity().length()), 1e-2);
   if (d.canTip) {
