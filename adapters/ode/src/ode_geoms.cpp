@@ -196,7 +196,8 @@ std::shared_ptr<const Model> modelFromOdeGeom(dGeomID g) {
     case dConvexClass: return convexModel(g);
     case dTriMeshClass: return triMeshModel(g);
     case dHeightfieldClass:
-      throw InputError("ODE heightfield geoms are not supported: ODE 0.16 gives no public access to the samples");
+      throw InputError("ODE heightfield geoms have no model here (ODE 0.16 gives no public access to the samples): "
+                       "register the data with unidist::ode::describeHeightfield");
     default:
       throw InputError("ODE geom class '" + odeClassName(c) + "' has no unidist model");
   }
@@ -205,6 +206,18 @@ std::shared_ptr<const Model> modelFromOdeGeom(dGeomID g) {
 Eigen::Isometry3d odeGeomPose(dGeomID g) {
   Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
   if (!dGeomIsSpace(g) && dGeomGetClass(g) == dPlaneClass) return X;  // not placeable: model in world coordinates
+  if (!dGeomIsSpace(g) && dGeomGetClass(g) == dHeightfieldClass) {
+    // Heightfields may be created non-placeable (frame = world), and dGeomGetPosition must not be called on
+    // those; ODE's local-to-world helpers work for both kinds.
+    dVector3 o, axis;
+    dGeomGetRelPointPos(g, 0, 0, 0, o);
+    X.translation() = toVec(o);
+    for (int j = 0; j < 3; ++j) {
+      dGeomVectorToWorld(g, j == 0, j == 1, j == 2, axis);
+      X.linear().col(j) = toVec(axis);
+    }
+    return X;
+  }
   const dReal* p = dGeomGetPosition(g);
   const dReal* R = dGeomGetRotation(g);  // row-major 3x4
   for (int i = 0; i < 3; ++i)

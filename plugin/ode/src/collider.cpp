@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <exception>
+#include <tuple>
 
 namespace unidist::ode::detail {
 namespace {
@@ -67,20 +68,30 @@ int rayContact(dGeomID o1, const GeomRecord& a, dGeomID ray, dContactGeom* out) 
 /// ODE's feature id on the other geom: the trimesh's own triangle index, nothing for ODE's primitives.
 int otherSide(int otherClass, const Model& b, int featureB, bool otherIsUnidist) {
   if (otherIsUnidist) return featureB;
-  if (otherClass == dTriMeshClass) return static_cast<int>(static_cast<const TriangleMesh&>(b).sourceTriangle(featureB));
+  if (otherClass == dTriMeshClass || otherClass == dHeightfieldClass)  // heightfield: our mesh's triangle index
+    return static_cast<int>(static_cast<const TriangleMesh&>(b).sourceTriangle(featureB));
   return -1;
 }
 
 int modelContacts(dGeomID o1, const GeomRecord& a, dGeomID o2, int maxc, dContactGeom* contacts, int skip) {
   const int otherClass = dGeomGetClass(o2);
   const GeomRecord* b = record(o2);
-  const std::shared_ptr<const Model> modelB = b ? b->model : modelFromOdeGeom(o2);
+  std::shared_ptr<const Model> modelB;
+  std::uint64_t version = 0;
+  if (b) {
+    modelB = b->model;
+  } else if (otherClass == dHeightfieldClass) {
+    std::tie(modelB, version) = describedHeightfield(dGeomHeightfieldGetHeightfieldData(o2));
+    if (!modelB) return 0;  // data never described: no contacts, as without the plugin (heightfield.h)
+  } else {
+    modelB = modelFromOdeGeom(o2);
+  }
   const Eigen::Isometry3d X_WA = odeGeomPose(o1), X_WB = odeGeomPose(o2);
 
   ManifoldOptions options;
   options.maxContacts = maxc;
   options.tolerance = pairTolerance(a, b);
-  ContactCache& cache = pairCache(o1, o2, otherClass, modelB->localBounds());
+  ContactCache& cache = pairCache(o1, o2, otherClass, modelB->localBounds(), version);
   const std::vector<Contact> found = manifoldContacts(*a.model, X_WA, *modelB, X_WB, options, &cache);
 
   int n = 0;

@@ -6,8 +6,10 @@
 
 #include <ode/ode.h>
 
+#include <cstdint>
 #include <memory>
 #include <string>
+#include <utility>
 
 namespace unidist::ode::detail {
 
@@ -21,8 +23,14 @@ struct GeomRecord {
 GeomRecord* record(dGeomID g);
 
 /// The warm-start cache of the pair (unidist geom a, other geom b), reset when b's class or bounds differ from
-/// the ones it was filled with. The reference stays valid until the pair's entry is erased (a geom destroyed).
-ContactCache& pairCache(dGeomID a, dGeomID b, int otherClass, const Aabb& otherBounds);
+/// the ones it was filled with, or when `otherVersion` differs (a heightfield's registration serial, new on every
+/// describeHeightfield; 0 for classes whose model is rebuilt per query). The reference stays valid until the
+/// pair's entry is erased (a geom destroyed).
+ContactCache& pairCache(dGeomID a, dGeomID b, int otherClass, const Aabb& otherBounds, std::uint64_t otherVersion = 0);
+
+/// The described model of a heightfield data and its registration serial (> 0; unique per describeHeightfield
+/// call in the process), or {null, 0} (heightfield.cpp).
+std::pair<std::shared_ptr<const Model>, std::uint64_t> describedHeightfield(dHeightfieldDataID data);
 
 /// Remembers a collider's error for lastError() and prints it through dMessage.
 void reportError(const std::string& message);

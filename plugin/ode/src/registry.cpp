@@ -16,6 +16,7 @@ struct PairEntry {
   ContactCache cache;
   int otherClass = -1;
   Aabb otherBounds;
+  std::uint64_t otherVersion = 0;
 };
 
 /// Process-wide like ODE's own class table (the plugin is one class per process); guarded by `mutex`.
@@ -77,9 +78,10 @@ dColliderFn* colliderFor(int otherClass) {
   switch (otherClass) {
     case dSphereClass: case dBoxClass: case dCapsuleClass: case dCylinderClass: case dPlaneClass:
     case dRayClass: case dConvexClass: case dTriMeshClass:
+    case dHeightfieldClass:  // no contacts unless the data was described (heightfield.h)
       return &detail::collide;
     default:
-      return otherClass == geomClass() ? &detail::collide : nullptr;  // heightfields and other user classes
+      return otherClass == geomClass() ? &detail::collide : nullptr;  // other user classes
   }
 }
 
@@ -93,15 +95,16 @@ GeomRecord* record(dGeomID g) {
   return *static_cast<GeomRecord**>(dGeomGetClassData(g));
 }
 
-ContactCache& pairCache(dGeomID a, dGeomID b, int otherClass, const Aabb& otherBounds) {
+ContactCache& pairCache(dGeomID a, dGeomID b, int otherClass, const Aabb& otherBounds, std::uint64_t otherVersion) {
   PluginState& s = state();
   std::lock_guard<std::mutex> lock(s.mutex);
   PairEntry& e = s.pairs[{a, b}];
   const bool sameBounds = e.otherBounds.min == otherBounds.min && e.otherBounds.max == otherBounds.max;
-  if (e.otherClass != otherClass || !sameBounds) {
+  if (e.otherClass != otherClass || !sameBounds || e.otherVersion != otherVersion) {
     e.cache.reset();
     e.otherClass = otherClass;
     e.otherBounds = otherBounds;
+    e.otherVersion = otherVersion;
   }
   return e.cache;
 }

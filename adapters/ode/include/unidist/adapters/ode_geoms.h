@@ -14,7 +14,9 @@
 //   dTriMeshClass  → TriangleMesh of the geom's triangles in its local frame, converted once per
 //                    dTriMeshDataID (see the cache below)
 // Other classes (heightfield, ray, transform, spaces, user classes) throw InputError naming the class: ODE 0.16
-// has no public access to a heightfield's samples.
+// has no public access to a heightfield's samples (the plugin builds heightfield models from the numbers the user
+// registers with unidist::ode::describeHeightfield: unidist/adapters/ode_heightfield.h). odeGeomPose works for
+// placeable and non-placeable heightfields (the latter: identity).
 //
 // Cache: converted trimeshes are kept per dTriMeshDataID and re-converted when the triangle count or the first or
 // last triangle changed (a destroyed data id reused by ODE for other data is detected this way). Data edited in

@@ -21,8 +21,9 @@
 // seen from the ray as g1). A ray starting inside a solid reports where it leaves, as ODE's sphere and box do;
 // with dGeomRaySetBackfaceCull it reports the next entry instead (or nothing).
 //
-// Not supported: dHeightfieldClass (ODE 0.16 gives no access to its samples): pairs with heightfields produce no
-// contacts. A geom transform (dGeomTransformClass) holding a unidist geom goes through ODE's own transform code
+// Heightfields (dHeightfieldClass): ODE 0.16 gives no access to their samples; describe the data once with
+// unidist::ode::describeHeightfield (unidist/ode/heightfield.h) and its geoms collide like any other class. Pairs
+// with a heightfield whose data was not described produce no contacts. A geom transform (dGeomTransformClass) holding a unidist geom goes through ODE's own transform code
 // (not tested yet); prefer dGeomSetOffsetPosition/Rotation.
 //
 // Warm start: each (unidist geom, other geom) pair keeps a unidist::ContactCache between steps (a resting pair
