@@ -424,6 +424,80 @@ TEST(MeshVolumes, FitHoldsDegeneratePointSets) {
   }
 }
 
+/// A random rotation (columns orthonormal, right-handed).
+Eigen::Matrix3d randomRotation(std::mt19937_64& rng) {
+  std::normal_distribution<double> n01;
+  return Eigen::Quaterniond(n01(rng), n01(rng), n01(rng), n01(rng)).normalized().toRotationMatrix();
+}
+
+/// Worst departure of U from a right-handed orthonormal frame.
+double frameError(const Eigen::Matrix3d& U) {
+  return std::max((U.transpose() * U - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff(),
+                  (U.col(0).cross(U.col(1)) - U.col(2)).cwiseAbs().maxCoeff());
+}
+
+TEST(MeshVolumes, PrincipalAxesFromAnyGuessAreOrthonormal) {
+  // The fit pads for axes orthonormal to a few ε, whatever the covariance (flat, round, a line, nothing) and
+  // however far the guess.
+  std::mt19937_64 rng(2718);
+  const std::vector<Vec> spectra = {Vec(1, 0.3, 1e-3), Vec(1, 1, 0), Vec(1, 0, 0), Vec(0, 0, 0), Vec(1, 1, 1),
+                                    Vec(1e-12, 1e-13, 0), Vec(1e8, 2e8, 3e8)};
+  for (const Vec& spectrum : spectra)
+    for (int k = 0; k < 200; ++k) {
+      const Eigen::Matrix3d Q = randomRotation(rng);
+      const Eigen::Matrix3d C = Q * spectrum.asDiagonal() * Q.transpose();
+      const Eigen::Matrix3d guess = k % 2 ? randomRotation(rng) : Q * randomRotation(rng).transpose() * randomRotation(rng);
+      const Eigen::Matrix3d U = unidist::mesh::principalAxesFrom(C, guess);
+      ASSERT_TRUE(U.allFinite());
+      EXPECT_LE(frameError(U), 8 * std::numeric_limits<double>::epsilon()) << spectrum.transpose() << " #" << k;
+    }
+}
+
+TEST(MeshVolumes, PrincipalAxesFromANearGuessFindTheAxes) {
+  // A child's axes a few degrees off its parent's: the result is as principal as a direct solve, to second
+  // order in the guess's error.
+  std::mt19937_64 rng(31415);
+  std::normal_distribution<double> n01;
+  for (int k = 0; k < 500; ++k) {
+    const Eigen::Matrix3d Q = randomRotation(rng);
+    const Eigen::Matrix3d C = Q * Vec(1, 0.3, 1e-3).asDiagonal() * Q.transpose();
+    const Vec axis = Vec(n01(rng), n01(rng), n01(rng)).normalized();
+    const Eigen::Matrix3d guess = Q * Eigen::AngleAxisd(0.03, axis).toRotationMatrix();
+    const Eigen::Matrix3d U = unidist::mesh::principalAxesFrom(C, guess);
+    for (int c = 0; c < 3; ++c) EXPECT_GT(std::abs(U.col(c).dot(Q.col(c))), std::cos(5e-3)) << "#" << k << " axis " << c;
+  }
+}
+
+TEST(MeshVolumes, MergedVolumeHoldsBothChildrensPointsInItsBox) {
+  // mergeRss bounds the children by their boxes [±half0, ±half1, ±radius]: every point of either child must
+  // lie in the merged RSS and in its box, on any axes, at any scale and offset.
+  std::mt19937_64 rng(1618);
+  std::normal_distribution<double> n01;
+  for (int k = 0; k < 300; ++k) {
+    const double scale = std::pow(10.0, static_cast<double>(k % 9) - 4);
+    const Vec offset = Vec(n01(rng), n01(rng), n01(rng)) * scale * (k % 3 == 0 ? 1e3 : 1.0);
+    std::vector<Vec> left, right;
+    const Vec shift = Vec(n01(rng), n01(rng), n01(rng)) * scale;
+    const Vec flat(1, 0.5, k % 4 == 0 ? 0.0 : 0.05);
+    for (int i = 0; i < 12; ++i) {
+      left.push_back(offset + scale * Vec(n01(rng), n01(rng), n01(rng)).cwiseProduct(flat));
+      right.push_back(offset + shift + scale * Vec(n01(rng), n01(rng), n01(rng)).cwiseProduct(flat));
+    }
+    const auto a = unidist::mesh::fitRss(randomRotation(rng), left.data(), left.size());
+    const auto b = unidist::mesh::fitRss(randomRotation(rng), right.data(), right.size());
+    const auto m = unidist::mesh::mergeRss(randomRotation(rng), a, b);
+    for (const auto* set : {&left, &right})
+      for (const Vec& p : *set) {
+        EXPECT_LE(outsideRss(m, p), 0.0L) << "#" << k;
+        const VecL d = meshfix::toL(p) - meshfix::toL(m.center);
+        const Eigen::Matrix<LD, 3, 3> U = m.axes.cast<LD>();
+        EXPECT_LE(std::abs(U.col(0).dot(d)), static_cast<LD>(m.half[0])) << "#" << k;
+        EXPECT_LE(std::abs(U.col(1).dot(d)), static_cast<LD>(m.half[1])) << "#" << k;
+        EXPECT_LE(std::abs(U.col(2).dot(d)), static_cast<LD>(m.radius)) << "#" << k;
+      }
+  }
+}
+
 TEST(MeshVolumes, RssLowerBoundNeverExceedsTheTrianglesDistance) {
   const std::vector<Family> fam = volumeFamilies();
   std::mt19937_64 rng(424242);

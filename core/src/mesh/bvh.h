@@ -18,12 +18,11 @@
 // can be added the same way without touching the others:
 //  * a ball centred at the AABB centre whose radius is the largest distance to a vertex of the node's
 //    triangles, padded by a few ulps: it provably holds every triangle (a triangle is the hull of its vertices);
-//  * a normal cone (axis, half-angle) holding the unit face normals of the node's triangles (the face normals
-//    only: a search for local minima at edges and vertices must widen the leaves' cones by the neighbours');
 //  * the node's slot range;
 //  * a rectangle swept sphere (RSS, mesh/rss.h) holding the node's triangles, for mesh–mesh pair bounds (fitted
 //    to the vertices; above 256 triangles merged from the children). Fitted lazily by rss(), on the first
 //    mesh–mesh query, once and thread-safe: point-query-only use never pays for it.
+// (Per-node normal cones are not kept: the normal cone search of contacts() builds its own, widened ones.)
 // Which volume prunes point queries best was measured (tests/bench/mesh_build.cpp, docs in the report): the
 // AABB alone, the ball alone, or the larger of the two lower bounds. The AABB is used.
 #pragma once
@@ -137,6 +136,7 @@ void nearestSearch(const Bvh& bvh, const Eigen::Vector3d& q, double& bestSq, Lea
   }
 }
 
+/// A cone of directions (the contacts' normal cone search uses it).
 struct NormalCone {
   Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();
   double halfAngle = 0;  ///< radians; π = every direction
@@ -146,7 +146,6 @@ struct NormalCone {
 struct MeshBvh {
   Bvh tree;
   std::vector<BoundingSphere> spheres;                 ///< per node
-  std::vector<NormalCone> cones;                       ///< per node
   std::vector<std::array<std::uint32_t, 2>> ranges;    ///< per node: slots [begin, end)
   std::size_t memoryBytes() const;
 
@@ -169,8 +168,7 @@ std::vector<Rss> fitNodeRss(const MeshBvh& bvh, const std::vector<Eigen::Vector3
                             const std::vector<TriangleMesh::Triangle>& triangles);
 
 MeshBvh buildMeshBvh(const std::vector<Eigen::Vector3d>& vertices,
-                     const std::vector<TriangleMesh::Triangle>& triangles,
-                     const std::vector<Eigen::Vector3d>& faceNormals);
+                     const std::vector<TriangleMesh::Triangle>& triangles);
 
 /// Ball centred at `center` holding every point given (radius = the largest distance, padded a few ulps
 /// so the rounding of the distances cannot make it too small).

@@ -230,7 +230,7 @@ void TriangleMesh::decideConvexity(const std::vector<double>& angleSums) {
 const mesh::MeshBvh& TriangleMesh::bvh() const {
   std::call_once(bvhOnce_, [this] {
     const auto start = std::chrono::steady_clock::now();
-    bvh_ = std::make_unique<mesh::MeshBvh>(mesh::buildMeshBvh(vertices_, triangles_, faceNormals_));
+    bvh_ = std::make_unique<mesh::MeshBvh>(mesh::buildMeshBvh(vertices_, triangles_));
     const std::chrono::duration<double, std::micro> took = std::chrono::steady_clock::now() - start;
     bvhMicros_.store(took.count(), std::memory_order_release);
     bvhBuilds_.fetch_add(1, std::memory_order_acq_rel);
