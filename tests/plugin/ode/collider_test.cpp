@@ -12,6 +12,8 @@
 
 namespace {
 
+using odetest::collide;
+using odetest::deepest;
 using odetest::OdeTest;
 using odetest::Vec;
 using Iso = Eigen::Isometry3d;
@@ -34,18 +36,6 @@ Iso shallowPose(const unidist::Model& a, Iso X_A, dGeomID other, double depth) {
   const unidist::DistanceResult d = unidist::distance(a, X_A, *b, unidist::odeGeomPose(other));
   X_A.translation() += (d.distance + depth) * d.normal;
   return X_A;
-}
-
-/// All contacts of dCollide(a, b), at most 16.
-std::vector<dContactGeom> collide(dGeomID a, dGeomID b, int maxc = 16) {
-  std::vector<dContactGeom> c(static_cast<std::size_t>(maxc));
-  const int n = dCollide(a, b, maxc, c.data(), sizeof(dContactGeom));
-  c.resize(static_cast<std::size_t>(n));
-  return c;
-}
-
-const dContactGeom& deepest(const std::vector<dContactGeom>& cs) {
-  return *std::max_element(cs.begin(), cs.end(), [](const dContactGeom& x, const dContactGeom& y) { return x.depth < y.depth; });
 }
 
 dGeomID unidistGeom(std::shared_ptr<const unidist::Model> m, double tol = 1e-10) {

@@ -14,6 +14,8 @@
 
 namespace {
 
+using odetest::collide;
+using odetest::deepest;
 using odetest::OdeTest;
 using odetest::OdeWorldTest;
 using odetest::Vec;
@@ -21,18 +23,6 @@ using Iso = Eigen::Isometry3d;
 using ModelPtr = std::shared_ptr<const unidist::Model>;
 
 Vec normalOf(const dContactGeom& c) { return Vec(c.normal[0], c.normal[1], c.normal[2]); }
-
-std::vector<dContactGeom> collide(dGeomID a, dGeomID b, int maxc = 16) {
-  std::vector<dContactGeom> c(static_cast<std::size_t>(maxc));
-  const int n = dCollide(a, b, maxc, c.data(), sizeof(dContactGeom));
-  c.resize(static_cast<std::size_t>(n));
-  return c;
-}
-
-const dContactGeom& deepest(const std::vector<dContactGeom>& cs) {
-  return *std::max_element(cs.begin(), cs.end(),
-                           [](const dContactGeom& x, const dContactGeom& y) { return x.depth < y.depth; });
-}
 
 dGeomID unidistGeom(ModelPtr m, double tol = 1e-10) {
   dGeomID g = unidist::ode::createGeom(nullptr, std::move(m));

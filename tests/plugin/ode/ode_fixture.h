@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 #include <ode/ode.h>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <vector>
@@ -39,6 +40,20 @@ inline Vec position(dBodyID b) {
 inline Vec linearVelocity(dBodyID b) {
   const dReal* v = dBodyGetLinearVel(b);
   return Vec(v[0], v[1], v[2]);
+}
+
+/// All contacts of dCollide(a, b), at most maxc.
+inline std::vector<dContactGeom> collide(dGeomID a, dGeomID b, int maxc = 16) {
+  std::vector<dContactGeom> c(static_cast<std::size_t>(maxc));
+  const int n = dCollide(a, b, maxc, c.data(), sizeof(dContactGeom));
+  c.resize(static_cast<std::size_t>(n));
+  return c;
+}
+
+/// The deepest of a non-empty set of contacts.
+inline const dContactGeom& deepest(const std::vector<dContactGeom>& cs) {
+  return *std::max_element(cs.begin(), cs.end(),
+                           [](const dContactGeom& x, const dContactGeom& y) { return x.depth < y.depth; });
 }
 
 /// ODE initialised for the test's lifetime.
