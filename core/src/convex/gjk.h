@@ -15,6 +15,8 @@
 //    EPA polytope) once that polytope, which lies inside D, contains the origin.
 #pragma once
 
+#include "cloud/point_support.h"
+
 #include <Eigen/Core>
 #include <Eigen/Geometry>  // cross products
 
@@ -26,6 +28,11 @@ namespace unidist::detail {
 
 /// World-frame support map of a convex set: a point of the set maximising d·p (d need not be unit).
 using SupportFn = std::function<Eigen::Vector3d(const Eigen::Vector3d&)>;
+
+/// The support map of the convex hull of `points` (non-empty; held by reference: they must outlive the map).
+inline SupportFn supportOfPointSet(const std::vector<Eigen::Vector3d>& points) {
+  return [&points](const Eigen::Vector3d& d) { return supportOfPoints(points, d); };
+}
 
 struct ConvexDistance {
   double distance = 0;  ///< signed: > 0 separation, < 0 = −(penetration depth = minimum translation distance)

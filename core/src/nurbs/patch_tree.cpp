@@ -168,6 +168,16 @@ bool mayHoldCritical(const PatchNode& n, const Cone& towards, bool corners) {
   return (edgeU && canBeOrthogonal(n.cv, towards)) || (edgeV && canBeOrthogonal(n.cu, towards));
 }
 
+void controlPoints(const PatchNode& n, std::vector<Eigen::Vector3d>& out) {
+  out.clear();
+  for (const Eigen::Vector4d& h : n.net.net) out.push_back(h.head<3>() / h[3]);
+}
+
+void controlPoints(const PatchNode& n, const Eigen::Isometry3d& X, std::vector<Eigen::Vector3d>& out) {
+  out.clear();
+  for (const Eigen::Vector4d& h : n.net.net) out.push_back(X * Eigen::Vector3d(h.head<3>() / h[3]));
+}
+
 BoundingSphere ballOfNet(const std::vector<Eigen::Vector4d>& net) {
   Aabb box;
   for (const Eigen::Vector4d& h : net) box.extend(h.head<3>() / h[3]);

@@ -59,6 +59,11 @@ constexpr int kCachedDepth = 7;
 /// `corners`, a node holding a patch corner always can (a corner extremum obeys no equation).
 bool mayHoldCritical(const PatchNode& n, const Cone& towards, bool corners);
 
+/// The node's Euclidean control points into `out` (replacing its contents): their hull holds the subpatch
+/// (positive weights). The second form maps them by X first.
+void controlPoints(const PatchNode& n, std::vector<Eigen::Vector3d>& out);
+void controlPoints(const PatchNode& n, const Eigen::Isometry3d& X, std::vector<Eigen::Vector3d>& out);
+
 struct PatchForest {
   std::vector<std::unique_ptr<PatchNode>> roots;
   mutable std::atomic<std::size_t> nodes{0}, bytes{0};

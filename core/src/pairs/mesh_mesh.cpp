@@ -311,7 +311,7 @@ class TrianglePairs {
 
   /// Leaf pair (i, j): bounds for each triangle pair, then the exact distance nearest bound first, each pair
   /// only while its bound is below the best (or only the first: `nearestOnly`).
-  void operator()(std::uint32_t i, std::uint32_t j, Best& bst, bool nearestOnly) const {
+  void operator()(std::uint32_t i, std::uint32_t j, Best& bst, bool nearestOnly) {
     const mesh::BvhNode& x = ha_.tree.nodes[i];
     const mesh::BvhNode& y = hb_.tree.nodes[j];
     // Consecutive leaf pairs mostly share one leaf (the search splits one side under a fixed other): its
@@ -420,8 +420,8 @@ class TrianglePairs {
   const mesh::MeshBvh& hb_;
   const Eigen::Isometry3d X_AB_;
   const Eigen::Matrix3d R_;
-  mutable std::uint32_t leafA_ = ~0u, leafB_ = ~0u;  ///< the leaves A_ and B_ hold
-  mutable Posed A_[mesh::kMaxLeafSize], B_[mesh::kMaxLeafSize];
+  std::uint32_t leafA_ = ~0u, leafB_ = ~0u;  ///< the leaves A_ and B_ hold
+  Posed A_[mesh::kMaxLeafSize], B_[mesh::kMaxLeafSize];
 };
 
 }  // namespace
@@ -439,7 +439,7 @@ DistanceResult meshMesh(const PosedModel& a, const PosedModel& b, const QueryCon
   const auto& tb = mb.triangles();
 
   Best best;
-  const TrianglePairs leaf(ma, mb, ha, hb, X_AB);
+  TrianglePairs leaf(ma, mb, ha, hb, X_AB);
   const Side sideA{&ha.tree, &ha.spheres, &ha.rss(va, ta)}, sideB{&hb.tree, &hb.spheres, &hb.rss(vb, tb)};
   const Traversal tr = traverse(sideA, sideB, X_AB, pruneOf(ctx, scale), budgetOf(ctx), best, leaf);
 

@@ -21,7 +21,6 @@ constexpr int kNodeGjkCap = 200;
 constexpr int kMaxDepth = 40;
 // Nodes popped before the search reports a bounded answer.
 constexpr int kNodeBudget = 200000;
-// Descent steps polishing the deepest point of the convex solid inside the NURBS solid (two point queries each).
 
 struct OpenNode {
   double lower;
@@ -55,16 +54,8 @@ class NodeBounds {
       lastHullApart_ = false;
       return atCentre - n.ball.radius;
     }
-    points_.clear();
-    for (const Eigen::Vector4d& h : n.net.net) points_.push_back(h.head<3>() / h[3]);
-    const SupportFn hull = [this](const Eigen::Vector3d& d) {
-      std::size_t k = 0;
-      double top = -std::numeric_limits<double>::infinity();
-      for (std::size_t i = 0; i < points_.size(); ++i)
-        if (const double v = d.dot(points_[i]); v > top) top = v, k = i;
-      return points_[k];
-    };
-    const ConvexDistance c = convexDistance(hull, supportB_, 0.25 * tolerance_, kNodeGjkCap);
+    nurbs::controlPoints(n, points_);
+    const ConvexDistance c = convexDistance(supportOfPointSet(points_), supportB_, 0.25 * tolerance_, kNodeGjkCap);
     iterations += c.iterations;
     lastWitnessB_ = c.pointB;
     lastHullApart_ = c.distance > 0;

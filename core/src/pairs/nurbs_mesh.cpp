@@ -40,16 +40,6 @@ struct OpenPair {
   bool operator>(const OpenPair& o) const { return lower > o.lower; }
 };
 
-SupportFn supportOf(const Points& points) {
-  return [&points](const Eigen::Vector3d& d) {
-    std::size_t k = 0;
-    double top = -kInf;
-    for (std::size_t i = 0; i < points.size(); ++i)
-      if (const double v = d.dot(points[i]); v > top) top = v, k = i;
-    return points[k];
-  };
-}
-
 /// Best-first over (patch node, mesh node) pairs in A's (the NURBS model's) frame.
 class NurbsMeshSearch {
  public:
@@ -184,14 +174,13 @@ class NurbsMeshSearch {
     // edge, orthogonal to the edge); the mesh side obeys no such rule at its edges and vertices.
     const nurbs::Cone towards = nurbs::coneTowards(cb, na->ball.center, na->ball.radius + sb.radius);
     if (!nurbs::mayHoldCritical(*na, towards, true)) return;
-    hullA_.clear();
-    for (const Eigen::Vector4d& h : na->net.net) hullA_.push_back(h.head<3>() / h[3]);
+    nurbs::controlPoints(*na, hullA_);
     const mesh::BvhNode& n = bvh_.tree.nodes[nb];
     double lower = kInf;
     Eigen::Vector3d witness = cb;
     auto hullBound = [&](const Points& other) {
       // Surfaces are at distance >= 0: EPA on overlapping hulls would measure nothing useful.
-      const ConvexDistance c = convexDistance(supportOf(hullA_), supportOf(other), 0.25 * tolerance_, kHullGjkCap, false);
+      const ConvexDistance c = convexDistance(supportOfPointSet(hullA_), supportOfPointSet(other), 0.25 * tolerance_, kHullGjkCap, false);
       iterations_ += c.iterations;
       const double l = std::min(c.lowerBound, c.distance) - margin;
       if (l < lower) {
@@ -259,13 +248,7 @@ DistanceResult nurbsMesh(const PosedModel& a, const PosedModel& b, const QueryCo
   const bool anInside = ma.isSolid() || mb.isSolid();
   if (outcome == Outcome::Touching) {
     if (!anInside) return touchingOpenSurfaces(a, search, ctx.tolerance);
-    if (ctx.overlapVerdictOnly) {
-      // Not proved apart; the realised gap still bounds the signed distance from above.
-      DistanceResult r = overlapVerdict();
-      r.distance = r.upperBound = search.best();
-      return r;
-    }
-    return genericPair(a, b, ctx);
+    return ctx.overlapVerdictOnly ? notProvedApart(search.best()) : genericPair(a, b, ctx);
   }
   // Apart surfaces overlap only by containment: a point of either surface inside the other solid.
   const bool surfacesApart = search.lower() > 0;

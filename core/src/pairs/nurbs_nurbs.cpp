@@ -164,14 +164,12 @@ class PairSearch {
     const nurbs::Cone towards = nurbs::coneTowards(cb, na->ball.center, na->ball.radius + nb->ball.radius);
     if (!nurbs::mayHoldCritical(*na, towards, true) || !nurbs::mayHoldCritical(*nb, rotated(towards, R_BA_), true))
       return;
-    hullA_.clear();
-    hullB_.clear();
-    for (const Eigen::Vector4d& h : na->net.net) hullA_.push_back(h.head<3>() / h[3]);
-    for (const Eigen::Vector4d& h : nb->net.net) hullB_.push_back(X_AB_ * Eigen::Vector3d(h.head<3>() / h[3]));
+    nurbs::controlPoints(*na, hullA_);
+    nurbs::controlPoints(*nb, X_AB_, hullB_);
     // Overlapping hulls prove nothing about surfaces (at distance >= 0): their depth (EPA) is not worth
     // measuring; the separating-axis bound GJK leaves (negative) still orders the deeper overlaps first.
     const ConvexDistance c =
-        convexDistance(supportOf(hullA_), supportOf(hullB_), 0.25 * tolerance_, kHullGjkCap, false);
+        convexDistance(supportOfPointSet(hullA_), supportOfPointSet(hullB_), 0.25 * tolerance_, kHullGjkCap, false);
     iterations_ += c.iterations;
     const double lower = std::min(c.lowerBound, c.distance) - margin;
     if (lower >= best_.value - 0.5 * tolerance_) {
@@ -179,16 +177,6 @@ class PairSearch {
       return;
     }
     open_.push({lower, na, nb, c.pointA, c.pointB});
-  }
-
-  static SupportFn supportOf(const std::vector<Eigen::Vector3d>& points) {
-    return [&points](const Eigen::Vector3d& d) {
-      std::size_t k = 0;
-      double top = -std::numeric_limits<double>::infinity();
-      for (std::size_t i = 0; i < points.size(); ++i)
-        if (const double v = d.dot(points[i]); v > top) top = v, k = i;
-      return points[k];
-    };
   }
 
   const NurbsModel& a_;
@@ -224,13 +212,8 @@ DistanceResult nurbsNurbs(const PosedModel& a, const PosedModel& b, const QueryC
   const auto& cornerB = mb.forest().roots.front()->corners[0];
   const bool surfacesApart = outcome != Outcome::Touching && search.lower() > 0;
   const bool contained = surfacesApart && (mb.inside(X_AB.inverse() * cornerA) || ma.inside(X_AB * cornerB));
-  if (ctx.overlapVerdictOnly && (contained || outcome == Outcome::Touching)) {
-    // Surfaces within a fraction of the tolerance cannot be proved apart here; the realised gap still bounds
-    // the signed distance from above (crossing surfaces only lower it).
-    DistanceResult r = overlapVerdict();
-    if (!contained) r.distance = r.upperBound = search.best();
-    return r;
-  }
+  if (ctx.overlapVerdictOnly && contained) return overlapVerdict();
+  if (ctx.overlapVerdictOnly && outcome == Outcome::Touching) return notProvedApart(search.best());
   if (!surfacesApart || contained) return genericPair(a, b, ctx);
 
   DistanceResult r;

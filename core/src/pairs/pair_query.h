@@ -47,6 +47,15 @@ inline DistanceResult overlapVerdict() {
   return r;
 }
 
+/// What a routine returns under overlapVerdictOnly when surfaces within a fraction of the tolerance cannot be
+/// proved apart: no verdict either way, and the realised gap `gap` (>= 0) as the upper bound (crossing surfaces
+/// only lower the signed distance).
+inline DistanceResult notProvedApart(double gap) {
+  DistanceResult r = overlapVerdict();
+  r.distance = r.upperBound = gap;
+  return r;
+}
+
 using PairFn = DistanceResult (*)(const PosedModel& a, const PosedModel& b, const QueryContext& ctx);
 
 /// The same answer seen with A and B exchanged: points swap, the normal flips, the distance is symmetric.

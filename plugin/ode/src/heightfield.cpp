@@ -26,6 +26,14 @@ HeightfieldRegistry& registry() {
   return r;
 }
 
+/// The entry of `data` (a copy, taken under the lock), or an empty one.
+Described lookup(dHeightfieldDataID data) {
+  HeightfieldRegistry& r = registry();
+  std::lock_guard<std::mutex> lock(r.mutex);
+  const auto it = r.models.find(data);
+  return it == r.models.end() ? Described{} : it->second;
+}
+
 }  // namespace
 
 void describeHeightfield(dHeightfieldDataID data, const double* heights, double width, double depth, int widthSamples,
@@ -53,12 +61,7 @@ void forgetHeightfield(dHeightfieldDataID data) {
   r.models.erase(data);
 }
 
-std::shared_ptr<const TriangleMesh> heightfieldModel(dHeightfieldDataID data) {
-  HeightfieldRegistry& r = registry();
-  std::lock_guard<std::mutex> lock(r.mutex);
-  const auto it = r.models.find(data);
-  return it == r.models.end() ? nullptr : it->second.model;
-}
+std::shared_ptr<const TriangleMesh> heightfieldModel(dHeightfieldDataID data) { return lookup(data).model; }
 
 std::size_t heightfieldCount() {
   HeightfieldRegistry& r = registry();
@@ -69,11 +72,8 @@ std::size_t heightfieldCount() {
 namespace detail {
 
 std::pair<std::shared_ptr<const Model>, std::uint64_t> describedHeightfield(dHeightfieldDataID data) {
-  HeightfieldRegistry& r = registry();
-  std::lock_guard<std::mutex> lock(r.mutex);
-  const auto it = r.models.find(data);
-  if (it == r.models.end()) return {nullptr, 0};
-  return {it->second.model, it->second.serial};
+  Described d = lookup(data);
+  return {std::move(d.model), d.serial};
 }
 
 }  // namespace detail

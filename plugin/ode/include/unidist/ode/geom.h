@@ -23,8 +23,9 @@
 //
 // Heightfields (dHeightfieldClass): ODE 0.16 gives no access to their samples; describe the data once with
 // unidist::ode::describeHeightfield (unidist/ode/heightfield.h) and its geoms collide like any other class. Pairs
-// with a heightfield whose data was not described produce no contacts. A geom transform (dGeomTransformClass) holding a unidist geom goes through ODE's own transform code
-// (not tested yet); prefer dGeomSetOffsetPosition/Rotation.
+// with a heightfield whose data was not described produce no contacts. A geom transform (dGeomTransformClass)
+// holding a unidist geom goes through ODE's own transform code (not tested yet); prefer
+// dGeomSetOffsetPosition/Rotation.
 //
 // Warm start: each (unidist geom, other geom) pair keeps a unidist::ContactCache between steps (a resting pair
 // is updated locally instead of searched again). The entry is dropped when the unidist geom is destroyed, and
