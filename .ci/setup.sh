@@ -10,8 +10,8 @@ ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 BUILD_DIR="${UNIDIST_BUILD_DIR:-$ROOT/build}"
 JOBS="${UNIDIST_JOBS:-2}"
 
-REQUIRED=(build-essential cmake pkg-config libeigen3-dev libbullet-dev libode-dev libosmesa6-dev libgtest-dev
-          libbenchmark-dev nlohmann-json3-dev libcli11-dev python3)
+REQUIRED=(build-essential cmake pkg-config libeigen3-dev libbullet-dev libode-dev libosmesa6-dev libqhull-dev libpng-dev
+          libgtest-dev libbenchmark-dev nlohmann-json3-dev libcli11-dev python3)
 # Peers the benchmarks compare against when they are there: FCL (meshes), OpenCASCADE (NURBS; its CMake
 # package links TBB), gnuplot (the plots).
 OPTIONAL=(libfcl-dev libocct-modeling-algorithms-dev libocct-modeling-data-dev libocct-foundation-dev libtbb-dev

@@ -34,7 +34,17 @@ else()
   unidist_require_pc(BULLET "bullet>=3.24" libbullet-dev)
 endif()
 unidist_require_pc(ODE "ode>=0.16" libode-dev)
-unidist_require_pc(OSMESA osmesa libosmesa6-dev)
+# The rasterization target (core/raster: image-space penetration depth, headless pictures) is optional: built
+# whenever OSMesa and qhull are there. PNG frames (demos) also need libpng.
+pkg_check_modules(OSMESA QUIET IMPORTED_TARGET GLOBAL osmesa)
+pkg_check_modules(QHULL QUIET IMPORTED_TARGET GLOBAL qhull_r)
+pkg_check_modules(PNG QUIET IMPORTED_TARGET GLOBAL libpng)
+if(OSMESA_FOUND AND QHULL_FOUND)
+  set(UNIDIST_HAVE_RASTER ON)
+else()
+  set(UNIDIST_HAVE_RASTER OFF)
+  message(STATUS "unidist: core/raster not built (needs libosmesa6-dev and libqhull-dev)")
+endif()
 # Engine headers are SYSTEM includes so their warnings never trip -Werror.
 foreach(_engine BULLET ODE)
   get_target_property(_dirs PkgConfig::${_engine} INTERFACE_INCLUDE_DIRECTORIES)

@@ -1,5 +1,6 @@
 # Install and export: libraries, public headers and the `unidist` command, plus a relocatable
-# unidistConfig.cmake so that find_package(unidist) gives unidist::core, ::adapters, ::bullet, ::ode.
+# unidistConfig.cmake so that find_package(unidist) gives unidist::core, ::adapters, ::bullet, ::ode
+# (and ::raster when it was built).
 include(CMakePackageConfigHelpers)
 
 get_filename_component(_unidist_root "${CMAKE_CURRENT_LIST_DIR}/.." ABSOLUTE)
@@ -14,13 +15,24 @@ else()
 endif()
 set(UNIDIST_ODE_PC_MODULE "ode>=0.16")
 
-install(TARGETS unidist_core unidist_adapters unidist_adapters_bullet unidist_adapters_ode unidist_bullet unidist_ode unidist
+set(_unidist_targets unidist_core unidist_adapters unidist_adapters_bullet unidist_adapters_ode unidist_bullet unidist_ode
+                     unidist)
+set(_unidist_header_dirs core/include adapters/include adapters/bullet/include adapters/ode/include
+                         plugin/bullet/include plugin/ode/include)
+# The raster target (OSMesa, qhull) when it was built: the config then re-creates its pkg-config targets too.
+set(UNIDIST_RASTER_PC_MODULES "")
+if(UNIDIST_HAVE_RASTER)
+  list(APPEND _unidist_targets unidist_raster)
+  list(APPEND _unidist_header_dirs core/raster/include)
+  set(UNIDIST_RASTER_PC_MODULES "\"OSMESA;osmesa\" \"QHULL;qhull_r\"")
+endif()
+install(TARGETS ${_unidist_targets}
         EXPORT unidistTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
         LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
         RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR}
         INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
-foreach(_dir core/include adapters/include adapters/bullet/include adapters/ode/include plugin/bullet/include plugin/ode/include)
+foreach(_dir ${_unidist_header_dirs})
   install(DIRECTORY "${_unidist_root}/${_dir}/" DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
           FILES_MATCHING PATTERN "*.h")
 endforeach()

@@ -2,7 +2,8 @@
 # The main headless demo: the mixed scene demos/scenes/mixed.json (a NURBS ball, the shared FCL "piano" mesh,
 # a point-cloud blob, a torus and a box primitive, dropped on a floor and on each other, in millimetres) run with
 # the unidist plugin in Bullet and in ODE. Prints each engine's summary (final poses, contacts, deepest
-# penetration, steps per second), the two side by side, and writes a trajectory CSV per engine.
+# penetration, steps per second), the two side by side, and writes a trajectory CSV and PNG frames (shaded
+# bodies, contact points and normals; docs/pictures.md) per engine.
 # Then two single queries. Usage: demos/main_demo.sh [path/to/unidist] [output directory]
 set -euo pipefail
 
@@ -17,9 +18,24 @@ fi
 mkdir -p "$OUT"
 "$UNIDIST" --version
 
+# Frames need the renderer (OSMesa, qhull and libpng at build time); a build without it still runs the demo.
+RENDER=()
+if "$UNIDIST" sim "$SCENE" --steps 0 --render "$OUT/frames_probe" --render-size 8x8 >/dev/null 2>&1; then
+  RENDER=(--render-size 480x360 --render-every 40)  # 31 frames of the 1200 steps
+else
+  echo "(no frames: this unidist was built without the renderer; install libosmesa6-dev libqhull-dev libpng-dev)"
+fi
+rm -rf "$OUT/frames_probe"
+
 for engine in bullet ode; do
   printf '\n=== %s: unidist sim demos/scenes/mixed.json --engine %s\n' "$engine" "$engine"
-  "$UNIDIST" sim "$SCENE" --engine "$engine" --trajectory "$OUT/trajectory_$engine.csv"
+  if ((${#RENDER[@]})); then
+    rm -rf "$OUT/frames_$engine"
+    "$UNIDIST" sim "$SCENE" --engine "$engine" --trajectory "$OUT/trajectory_$engine.csv" \
+      --render "$OUT/frames_$engine" "${RENDER[@]}"
+  else
+    "$UNIDIST" sim "$SCENE" --engine "$engine" --trajectory "$OUT/trajectory_$engine.csv"
+  fi
   "$UNIDIST" sim "$SCENE" --engine "$engine" --json > "$OUT/final_$engine.json"
   echo "(trajectory: $OUT/trajectory_$engine.csv)"
 done

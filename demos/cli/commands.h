@@ -11,8 +11,10 @@ struct DistanceArgs {
   std::string poseA, poseB;
   std::string tol;
   std::string inflateA, inflateB;
+  std::string pd, resolution;
   // Whether each option was given: an empty value given on purpose ("--tol ''") is bad input, not "absent".
   bool hasPoseA = false, hasPoseB = false, hasTol = false, hasInflateA = false, hasInflateB = false;
+  bool hasPd = false, hasResolution = false;
   bool json = false;
 };
 
@@ -33,7 +35,9 @@ struct SimArgs {
   std::string scene;
   std::string engine = "bullet";
   std::string steps, trajectory, recordEvery;
+  std::string render, renderEvery, renderSize;  // --render DIR: PNG frames (demos/render)
   bool hasSteps = false, hasRecordEvery = false;
+  bool hasRender = false, hasRenderEvery = false, hasRenderSize = false;
   bool json = false;
 };
 

@@ -1,11 +1,16 @@
-// `unidist distance A B [--pose-a P] [--pose-b P] [--tol T] [--inflate-a R] [--inflate-b R] [--json]`:
-// the query of docs/query-contract.md, printed as one JSON object or as a short report.
+// `unidist distance A B [--pose-a P] [--pose-b P] [--tol T] [--inflate-a R] [--inflate-b R] [--pd exact|raster]
+// [--resolution N] [--json]`: the query of docs/query-contract.md, printed as one JSON object or as a short report.
+// --pd raster reads A and B as unions of convex pieces and answers with unidist::raster (docs/raster.md).
 #include "commands.h"
 #include "output.h"
 
+#include "unidist/adapters/convex_pieces.h"
 #include "unidist/adapters/load.h"
 #include "unidist/adapters/spec.h"
 #include "unidist/distance.h"
+#ifdef UNIDIST_HAVE_RASTER
+#include "unidist/raster/convex_piece.h"
+#endif
 
 #include <chrono>
 #include <cmath>
@@ -34,23 +39,92 @@ std::shared_ptr<const Model> load(const std::string& specOrPath, const char* whi
   }
 }
 
+/// What one query answered, with its wall time and the bounding-box diagonals the default tolerance uses.
+struct Answer {
+  DistanceResult result;
+  double timeUs = 0;
+  double tolerance = 0;
+};
+
+Answer exactAnswer(const DistanceArgs& args, const DistanceOptions& options, const Eigen::Isometry3d& X_WA,
+                   const Eigen::Isometry3d& X_WB) {
+  const std::shared_ptr<const Model> a = load(args.a, "A");
+  const std::shared_ptr<const Model> b = load(args.b, "B");
+  Answer answer;
+  const auto start = std::chrono::steady_clock::now();
+  answer.result = distance(*a, X_WA, *b, X_WB, options);
+  answer.timeUs = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
+  answer.tolerance = options.tolerance >= 0 ? options.tolerance : defaultTolerance(*a, X_WA, *b, X_WB);
+  return answer;
+}
+
+#ifdef UNIDIST_HAVE_RASTER
+raster::ConvexUnion loadUnion(const std::string& specOrPath, const char* which) {
+  try {
+    raster::ConvexUnion pieces;
+    for (const PieceSource& p : loadConvexPieces(specOrPath))
+      pieces.push_back(raster::convexPiece(p.vertices, p.triangles, p.name));
+    return pieces;
+  } catch (const InputError& e) {
+    throw InputError(std::string(which) + ": " + e.what());
+  }
+}
+
+double posedDiagonal(const raster::ConvexUnion& pieces, const Eigen::Isometry3d& X) {
+  Aabb box;
+  for (const raster::ConvexPolytope& p : pieces)
+    for (const Eigen::Vector3d& v : p.vertices) box.extend(X * v);
+  return box.diagonal();
+}
+
+Answer rasterAnswer(const DistanceArgs& args, const DistanceOptions& options, const Eigen::Isometry3d& X_WA,
+                    const Eigen::Isometry3d& X_WB) {
+  if (args.hasInflateA || args.hasInflateB) throw InputError("--pd raster does not take --inflate-a/--inflate-b");
+  raster::UnionDistanceOptions unionOptions;
+  unionOptions.tolerance = options.tolerance;
+  if (args.hasResolution) {
+    const double n = parseNumber(args.resolution, "--resolution");
+    if (n != std::floor(n) || n < 8 || n > 4096)
+      throw InputError("--resolution must be a whole number of pixels in 8..4096 (got " + args.resolution + ")");
+    unionOptions.resolution = static_cast<int>(n);
+  }
+  const raster::ConvexUnion a = loadUnion(args.a, "A");
+  const raster::ConvexUnion b = loadUnion(args.b, "B");
+  Answer answer;
+  answer.tolerance = options.tolerance >= 0 ? options.tolerance
+                                            : 1e-9 * std::max(posedDiagonal(a, X_WA), posedDiagonal(b, X_WB));
+  const auto start = std::chrono::steady_clock::now();
+  raster::OffscreenContext context(unionOptions.resolution, unionOptions.resolution);
+  answer.result = raster::unionDistance(context, a, X_WA, b, X_WB, unionOptions);
+  answer.timeUs = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
+  return answer;
+}
+#endif
+
 }  // namespace
 
 std::string runDistance(const DistanceArgs& args) {
+  const bool raster = args.hasPd && args.pd == "raster";
+  if (args.hasPd && !raster && args.pd != "exact")
+    throw InputError("--pd must be 'exact' or 'raster' (got '" + args.pd + "')");
+  if (args.hasResolution && !raster) throw InputError("--resolution needs --pd raster");
   DistanceOptions options;
   if (args.hasTol) options.tolerance = nonNegative(args.tol, "--tol");  // absent: -1 → the contract's default
   if (args.hasInflateA) options.inflateA = nonNegative(args.inflateA, "--inflate-a");
   if (args.hasInflateB) options.inflateB = nonNegative(args.inflateB, "--inflate-b");
   const Eigen::Isometry3d X_WA = poseOrIdentity(args.hasPoseA, args.poseA, "--pose-a");
   const Eigen::Isometry3d X_WB = poseOrIdentity(args.hasPoseB, args.poseB, "--pose-b");
-  const std::shared_ptr<const Model> a = load(args.a, "A");
-  const std::shared_ptr<const Model> b = load(args.b, "B");
-
-  const auto start = std::chrono::steady_clock::now();
-  const DistanceResult r = distance(*a, X_WA, *b, X_WB, options);
-  const auto stop = std::chrono::steady_clock::now();
-  const double timeUs = std::chrono::duration<double, std::micro>(stop - start).count();
-  const double buildUs = 0;  // primitives build no acceleration structure
+#ifdef UNIDIST_HAVE_RASTER
+  const Answer answer = raster ? rasterAnswer(args, options, X_WA, X_WB) : exactAnswer(args, options, X_WA, X_WB);
+#else
+  if (raster)
+    throw InputError("--pd raster: this unidist was built without the raster target (install libosmesa6-dev and "
+                     "libqhull-dev, then rebuild)");
+  const Answer answer = exactAnswer(args, options, X_WA, X_WB);
+#endif
+  const DistanceResult& r = answer.result;
+  const double timeUs = answer.timeUs;
+  const double buildUs = 0;  // acceleration structures are built inside the timed query, on first need
 
   if (!std::isfinite(r.distance) || !r.pointA.allFinite() || !r.pointB.allFinite() || !r.normal.allFinite())
     throw std::runtime_error(std::string("the query returned a non-finite answer (method ") + r.method + ")");
@@ -66,7 +140,7 @@ std::string runDistance(const DistanceArgs& args) {
     out += "distance     " + textNumber(r.distance) + "\n";
     out += "bounds       [" + textNumber(r.lowerBound) + ", " + textNumber(r.upperBound) + "]\n";
     out += "status       " + std::string(toString(r.status)) + " (tolerance " +
-           textNumber(options.tolerance >= 0 ? options.tolerance : defaultTolerance(*a, X_WA, *b, X_WB)) + ")\n";
+           textNumber(answer.tolerance) + ")\n";
     out += "point_a      " + textVector(r.pointA) + "\n";
     out += "point_b      " + textVector(r.pointB) + "\n";
     out += "normal       " + textVector(r.normal) + "\n";

@@ -57,6 +57,12 @@ int run(int argc, char** argv) {
       "Absolute accuracy T >= 0 (default: 1e-9 x the larger bounding-box diagonal; 0: as exact as double allows)");
   CLI::Option* inflateA = distCmd->add_option("--inflate-a", dist.inflateA, "Grow A by a ball of radius R >= 0");
   CLI::Option* inflateB = distCmd->add_option("--inflate-b", dist.inflateB, "Grow B by a ball of radius R >= 0");
+  CLI::Option* pd = distCmd->add_option(
+      "--pd", dist.pd,
+      "Penetration depth method: exact (default) or raster (A and B as unions of convex pieces: an OBJ with one "
+      "group per piece; image-space depth, docs/raster.md)");
+  CLI::Option* resolution =
+      distCmd->add_option("--resolution", dist.resolution, "--pd raster: pixels per cube-face side (default 256)");
   distCmd->add_flag("--json", dist.json, "Print one JSON object");
 
   InfoArgs info;
@@ -86,6 +92,12 @@ int run(int argc, char** argv) {
   CLI::Option* recordEvery =
       simCmd->add_option("--record-every", sim.recordEvery, "Trajectory: every K-th step (default 10)");
   simCmd->add_flag("--json", sim.json, "Print one JSON object");
+  CLI::Option* simRender = simCmd->add_option(
+      "--render", sim.render, "Write PNG pictures DIR/frame_00000.png, ... (start, every K-th step, last)");
+  CLI::Option* simRenderEvery =
+      simCmd->add_option("--render-every", sim.renderEvery, "Pictures: every K-th step (default: about 30 frames)");
+  CLI::Option* simRenderSize =
+      simCmd->add_option("--render-size", sim.renderSize, "Pictures: WxH pixels (default 640x480)");
 
   // CLI11 would call an unknown subcommand an unexpected argument; say what it is and what exists.
   std::string known;
@@ -113,12 +125,17 @@ int run(int argc, char** argv) {
   dist.hasTol = tol->count() > 0;
   dist.hasInflateA = inflateA->count() > 0;
   dist.hasInflateB = inflateB->count() > 0;
+  dist.hasPd = pd->count() > 0;
+  dist.hasResolution = resolution->count() > 0;
   cont.hasPoseA = contPoseA->count() > 0;
   cont.hasPoseB = contPoseB->count() > 0;
   cont.hasMargin = margin->count() > 0;
   cont.hasMaxContacts = maxContacts->count() > 0;
   sim.hasSteps = simSteps->count() > 0;
   sim.hasRecordEvery = recordEvery->count() > 0;
+  sim.hasRender = simRender->count() > 0;
+  sim.hasRenderEvery = simRenderEvery->count() > 0;
+  sim.hasRenderSize = simRenderSize->count() > 0;
   const std::string out = distCmd->parsed()   ? unidist::cli::runDistance(dist)
                           : contCmd->parsed() ? unidist::cli::runContacts(cont)
                           : simCmd->parsed()  ? unidist::cli::runSim(sim)

@@ -6,8 +6,9 @@
 //          A polygon with k > 3 corners becomes k − 2 triangles as a fan from its first corner: exact for
 //          convex polygons (and polygons star-shaped around that corner), which is what exporters write;
 //          a non-convex polygon is not ear-clipped and may give overlapping triangles.
-// Checked and ignored: vt (1–3 numbers), vn (3 numbers), vp. Ignored: o, g, s, l, p, usemtl, mtllib and the
-//          other display/render attributes, comments (# to the end of the line), blank lines.
+// Checked and ignored: vt (1–3 numbers), vn (3 numbers), vp. Ignored: s, l, p, usemtl, mtllib and the other
+//          display/render attributes, comments (# to the end of the line), blank lines. 'o' and 'g' name the
+//          group the following faces belong to: a mesh ignores them; readObjGroups keeps them (convex pieces).
 // Also:    a first statement of exactly two non-negative integers "V F" is a count line (FCL's benchmark
 //          meshes env.obj and rob.obj start with one); the file must then hold exactly V vertices and F faces.
 // Errors:  unknown statements, free-form geometry (curv, surf, ...), line continuations ('\'), non-numbers,
@@ -46,6 +47,22 @@ class ObjReader {
   ObjReader(const std::string& path, std::string_view text) : s_(path, text) {}
 
   std::shared_ptr<const Model> read() {
+    scan();
+    return makeMesh(s_.path(), std::move(vertices_), std::move(triangles_));
+  }
+
+  ObjGroups readGroups() {
+    scan();
+    ObjGroups out;
+    out.vertices = std::move(vertices_);
+    out.triangles = std::move(triangles_);
+    out.groupOfTriangle = std::move(groupOfTriangle_);
+    out.groupNames = std::move(groupNames_);
+    return out;
+  }
+
+ private:
+  void scan() {
     bool first = true;
     while (s_.nextLine()) {
       s_.stripComment('#');
@@ -68,9 +85,11 @@ class ObjReader {
         ++counts_[2];
       } else if (key == "vp") {
         checkNumbers(key, 1, 3);
-      } else if (oneOf(key, {"o", "g", "s", "l", "p", "usemtl", "mtllib", "lod", "bevel", "c_interp", "d_interp",
+      } else if (key == "o" || key == "g") {
+        group();
+      } else if (oneOf(key, {"s", "l", "p", "usemtl", "mtllib", "lod", "bevel", "c_interp", "d_interp",
                              "shadow_obj", "trace_obj", "maplib", "usemap", "ctech", "stech"})) {
-        // grouping, materials, smoothing, lines and points: nothing the geometry needs
+        // materials, smoothing, lines and points: nothing the geometry needs
       } else if (oneOf(key, {"cstype", "deg", "bmat", "step", "curv", "curv2", "surf", "parm", "trim", "hole", "scrv",
                              "sp", "end", "con"})) {
         s_.fail("free-form geometry ('" + std::string(key) + "') is not supported; only polygonal faces are");
@@ -78,10 +97,18 @@ class ObjReader {
         s_.fail("unknown OBJ statement " + quoted(key) + " (expected v, f, vt, vn, o, g, s, usemtl, ...)");
       }
     }
-    return finish();
+    finish();
   }
 
- private:
+  /// 'o name' / 'g name ...': the following faces belong to the group of that whole text (one group per text).
+  void group() {
+    std::string name;
+    for (std::string_view t = s_.token(); !t.empty(); t = s_.token()) name += (name.empty() ? "" : " ") + std::string(t);
+    const auto found = std::find(groupNames_.begin(), groupNames_.end(), name);
+    currentGroup_ = static_cast<int>(found - groupNames_.begin());
+    if (found == groupNames_.end()) groupNames_.push_back(name);
+  }
+
   void vertex() {
     double c[3];
     c[0] = next("x coordinate");
@@ -153,8 +180,14 @@ class ObjReader {
     }
     if (polygon_.size() < 3)
       s_.fail("a face needs at least 3 corners, this one has " + std::to_string(polygon_.size()));
-    for (std::size_t k = 1; k + 1 < polygon_.size(); ++k)  // fan from the first corner
+    if (currentGroup_ < 0) {  // faces before any 'o'/'g' form the unnamed group
+      groupNames_.push_back("");
+      currentGroup_ = static_cast<int>(groupNames_.size()) - 1;
+    }
+    for (std::size_t k = 1; k + 1 < polygon_.size(); ++k) {  // fan from the first corner
       triangles_.push_back({polygon_[0], polygon_[k], polygon_[k + 1]});
+      groupOfTriangle_.push_back(currentGroup_);
+    }
     ++faces_;
   }
 
@@ -170,7 +203,7 @@ class ObjReader {
     return true;
   }
 
-  std::shared_ptr<const Model> finish() {
+  void finish() {
     if (s_.lineNumber() == 0) s_.fail("empty file");
     for (const ForwardReference& r : forward_)
       if (r.index > counts_[r.kind])
@@ -186,12 +219,14 @@ class ObjReader {
     if (triangles_.empty())
       s_.fail("end of file: no faces ('f' lines) in " + std::to_string(s_.lineNumber()) +
               " lines (an OBJ model must be a polygon mesh)");
-    return makeMesh(s_.path(), std::move(vertices_), std::move(triangles_));
   }
 
   LineScanner s_;
   std::vector<Eigen::Vector3d> vertices_;
   std::vector<Triangle> triangles_;
+  std::vector<int> groupOfTriangle_;
+  std::vector<std::string> groupNames_;
+  int currentGroup_ = -1;
   std::vector<std::uint32_t> polygon_;
   std::vector<ForwardReference> forward_;
   long long counts_[3] = {0, 0, 0};  // v, vt, vn defined so far
@@ -205,6 +240,11 @@ class ObjReader {
 std::shared_ptr<const Model> readObj(const std::string& path) {
   const std::string text = readWholeFile(path);
   return ObjReader(path, text).read();
+}
+
+ObjGroups readObjGroups(const std::string& path) {
+  const std::string text = readWholeFile(path);
+  return ObjReader(path, text).readGroups();
 }
 
 }  // namespace unidist::formats

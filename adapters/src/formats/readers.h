@@ -16,6 +16,15 @@ namespace unidist::formats {
 
 /// Wavefront OBJ: a triangle mesh (polygons fan-triangulated). adapters/src/formats/obj_reader.cpp.
 std::shared_ptr<const Model> readObj(const std::string& path);
+/// An OBJ file's faces with the group ('o'/'g' statement) each belongs to, unwelded: what convex pieces are
+/// made of. Same checks as readObj. Faces before any group belong to a group named "".
+struct ObjGroups {
+  std::vector<Eigen::Vector3d> vertices;
+  std::vector<TriangleMesh::Triangle> triangles;
+  std::vector<int> groupOfTriangle;  ///< index into groupNames, one per triangle
+  std::vector<std::string> groupNames;
+};
+ObjGroups readObjGroups(const std::string& path);
 /// STL, ASCII or binary (decided by the binary size 84 + 50·n first): a triangle mesh.
 std::shared_ptr<const Model> readStl(const std::string& path);
 /// PLY, ASCII or binary little/big endian: a triangle mesh when it has faces, else a point cloud.

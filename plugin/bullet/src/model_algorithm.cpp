@@ -1,5 +1,6 @@
 #include "model_algorithm.h"
 
+#include "aabb_gap.h"
 #include "eigen_bullet.h"
 #include "regions.h"
 #include "unidist/bullet/shapes.h"
@@ -63,21 +64,6 @@ double speculativeDistance(const btCollisionObjectWrapper* a, const ModelShapeDa
     if (spin > 0) speed += spin * reach(*w->getCollisionShape(), data);
   }
   return (v.norm() + speed) * dt;
-}
-
-/// A proved lower bound on the distance between the two shapes: the largest gap between their world bounding boxes
-/// along an axis (negative where the boxes overlap), less a pad for the rounding of the boxes to btScalar.
-double aabbGap(const btCollisionObjectWrapper& a, const btCollisionObjectWrapper& b) {
-  btVector3 minA, maxA, minB, maxB;
-  a.getCollisionShape()->getAabb(a.getWorldTransform(), minA, maxA);
-  b.getCollisionShape()->getAabb(b.getWorldTransform(), minB, maxB);
-  double gap = -std::numeric_limits<double>::infinity(), scale = 1;
-  for (int i = 0; i < 3; ++i) {
-    gap = std::max({gap, double(minB[i]) - double(maxA[i]), double(minA[i]) - double(maxB[i])});
-    scale = std::max({scale, std::abs(double(minA[i])), std::abs(double(maxA[i])), std::abs(double(minB[i])),
-                      std::abs(double(maxB[i]))});
-  }
-  return gap - 1e-5 * scale;
 }
 
 /// What manifoldContacts does to the cache of a pair without contacts: no lift next step, and the last search

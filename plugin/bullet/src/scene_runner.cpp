@@ -95,6 +95,21 @@ std::pair<double, int> contactSummary(btCollisionDispatcher& dispatcher) {
   return {deepest, count};
 }
 
+/// The touching contact points of every manifold of the last step (for pictures).
+std::vector<SimContact> touchingContacts(btCollisionDispatcher& dispatcher) {
+  std::vector<SimContact> out;
+  for (int m = 0; m < dispatcher.getNumManifolds(); ++m) {
+    const btPersistentManifold* manifold = dispatcher.getManifoldByIndexInternal(m);
+    for (int i = 0; i < manifold->getNumContacts(); ++i) {
+      const btManifoldPoint& p = manifold->getContactPoint(i);
+      if (p.getDistance() > 0) continue;
+      out.push_back({0.5 * (toEigen(p.getPositionWorldOnA()) + toEigen(p.getPositionWorldOnB())),
+                     toEigen(p.m_normalWorldOnB), double(p.getDistance())});
+    }
+  }
+  return out;
+}
+
 }  // namespace
 
 SimResult runScene(const Scene& scene, const SimOptions& options) {
@@ -120,6 +135,8 @@ SimResult runScene(const Scene& scene, const SimOptions& options) {
       return out;
     };
     double seconds = 0;  // stepping only, not the recording
+    const bool frames = options.frame && options.frameEvery > 0;
+    if (frames) options.frame(0, states(), {});
     for (int step = 1; step <= steps; ++step) {
       const auto start = std::chrono::steady_clock::now();
       world.stepSimulation(btScalar(scene.dt), 1, btScalar(scene.dt));
@@ -129,6 +146,8 @@ SimResult runScene(const Scene& scene, const SimOptions& options) {
       result.contacts = count;
       if (options.record && options.recordEvery > 0 && (step % options.recordEvery == 0 || step == steps))
         options.record(step, states());
+      if (frames && (step % options.frameEvery == 0 || step == steps))
+        options.frame(step, states(), touchingContacts(dispatcher));
     }
     result.steps = steps;
     result.stepsPerSecond = steps > 0 && seconds > 0 ? steps / seconds : 0;

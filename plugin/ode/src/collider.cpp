@@ -119,6 +119,8 @@ int collide(dGeomID o1, dGeomID o2, int flags, dContactGeom* contacts, int skip)
     const GeomRecord* a = record(o1);
     if (!a || !a->model) return 0;  // not ours (cannot happen through ODE's table) or already destroyed
     if (dGeomGetClass(o2) == dRayClass) return rayContact(o1, *a, o2, contacts);
+    if (const GeomRecord* b = record(o2); a->pieces && b && b->pieces)
+      return convexUnionContacts(o1, *a, o2, *b, maxc, contacts);
     return modelContacts(o1, *a, o2, maxc, contacts, skip);
   } catch (const std::exception& e) {
     reportError(std::string("collider: ") + e.what());

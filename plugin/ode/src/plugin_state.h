@@ -13,11 +13,20 @@
 
 namespace unidist::ode::detail {
 
+/// A convex decomposition attached to a geom (unidist/ode/convex_union.h; defined in convex_union.cpp).
+struct ConvexPieces;
+
 /// What a unidist geom owns (ODE's class data holds only a pointer to it: raw zeroed memory, no constructors).
 struct GeomRecord {
   std::shared_ptr<const Model> model;
   double tolerance = -1;
+  std::shared_ptr<const ConvexPieces> pieces;  ///< set for convex-union geoms only
 };
+
+/// Contacts of two convex-union geoms by the image-space penetration depth (convex_union.cpp; 0 contacts when
+/// the raster target was not built, which never happens: such geoms cannot be created then).
+int convexUnionContacts(dGeomID o1, const GeomRecord& a, dGeomID o2, const GeomRecord& b, int maxc,
+                        dContactGeom* contacts);
 
 /// The record of a unidist geom, or null for other geoms.
 GeomRecord* record(dGeomID g);

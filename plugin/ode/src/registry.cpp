@@ -146,7 +146,7 @@ dGeomID createGeom(dSpaceID space, std::shared_ptr<const Model> model) {
   const int c = geomClass();
   if (c < 0) throw std::logic_error("unidist::ode::createGeom: call unidist::ode::init() after dInitODE2 first");
   dGeomID g = dCreateGeom(c);
-  *static_cast<detail::GeomRecord**>(dGeomGetClassData(g)) = new detail::GeomRecord{std::move(model), -1};
+  *static_cast<detail::GeomRecord**>(dGeomGetClassData(g)) = new detail::GeomRecord{std::move(model), -1, nullptr};
   if (space) dSpaceAdd(space, g);
   return g;
 }

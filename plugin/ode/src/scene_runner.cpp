@@ -32,6 +32,8 @@ struct World {
   double maxDepth = 0;
   int contactsThisStep = 0;
   double bounceVelocity = 0;
+  bool keepContacts = false;           // this step is pictured: keep its contact points
+  std::vector<SimContact> stepContacts;
 };
 
 void toOde(const Eigen::Matrix3d& R, dMatrix3 out) {
@@ -124,6 +126,10 @@ void nearCallback(void* data, dGeomID o1, dGeomID o2) {
     c[i].surface.bounce = bounce;
     c[i].surface.bounce_vel = w.bounceVelocity;
     w.maxDepth = std::max(w.maxDepth, static_cast<double>(c[i].geom.depth));
+    if (w.keepContacts)
+      w.stepContacts.push_back({Eigen::Vector3d(c[i].geom.pos[0], c[i].geom.pos[1], c[i].geom.pos[2]),
+                                Eigen::Vector3d(c[i].geom.normal[0], c[i].geom.normal[1], c[i].geom.normal[2]),
+                                -static_cast<double>(c[i].geom.depth)});
     dJointAttach(dJointCreateContact(w.world, w.contactGroup, &c[i]), dGeomGetBody(c[i].geom.g1),
                  dGeomGetBody(c[i].geom.g2));
   }
@@ -197,16 +203,23 @@ SimResult runScene(const Scene& scene, const SimOptions& options) {
   result.steps = steps;
   const auto start = std::chrono::steady_clock::now();
   double recordSeconds = 0;
+  const bool frames = options.frame && options.frameEvery > 0;
+  auto timed = [&recordSeconds](const auto& call) {  // recording is not stepping
+    const auto r0 = std::chrono::steady_clock::now();
+    call();
+    recordSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - r0).count();
+  };
+  if (frames) timed([&] { options.frame(0, states(scene, w), {}); });
   for (int step = 1; step <= steps; ++step) {
     w.contactsThisStep = 0;
+    w.keepContacts = frames && (step % options.frameEvery == 0 || step == steps);
+    w.stepContacts.clear();
     dSpaceCollide(w.space, &w, &nearCallback);
     dWorldStep(w.world, scene.dt);
     dJointGroupEmpty(w.contactGroup);
-    if (options.record && options.recordEvery > 0 && (step % options.recordEvery == 0 || step == steps)) {
-      const auto r0 = std::chrono::steady_clock::now();
-      options.record(step, states(scene, w));
-      recordSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - r0).count();
-    }
+    if (options.record && options.recordEvery > 0 && (step % options.recordEvery == 0 || step == steps))
+      timed([&] { options.record(step, states(scene, w)); });
+    if (w.keepContacts) timed([&] { options.frame(step, states(scene, w), w.stepContacts); });
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() - recordSeconds;
   result.bodies = states(scene, w);

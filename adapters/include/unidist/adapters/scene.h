@@ -66,6 +66,14 @@ struct SimResult {
   double stepsPerSecond = 0;         ///< wall clock, collision + solver
 };
 
+/// A contact point the engine was handed in one step (for pictures): the world point (midway between the two
+/// surfaces), the engine's unit normal and the separation (<= 0: touching or penetrating).
+struct SimContact {
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();
+  double separation = 0;
+};
+
 /// Options of a run, shared by both engines' runners.
 struct SimOptions {
   int steps = -1;  ///< < 0: the scene's
@@ -73,6 +81,10 @@ struct SimOptions {
   /// states; null: nothing recorded. Used for trajectory CSVs.
   int recordEvery = 0;
   std::function<void(int step, const std::vector<BodyState>& bodies)> record;
+  /// Called before the first step (step 0, no contacts), after every `frameEvery`-th step and after the last,
+  /// with the bodies' states and that step's touching contacts; null: nothing collected. Used for pictures.
+  int frameEvery = 0;
+  std::function<void(int step, const std::vector<BodyState>& bodies, const std::vector<SimContact>& contacts)> frame;
 };
 
 }  // namespace unidist
