@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -72,7 +73,12 @@ std::shared_ptr<const Model> loadModel(const std::string& specOrPath) {
                      "; primitive specs look like sphere:r=1)");
   }
   if (!format->read) throw InputError(specOrPath + ": " + format->name + " files are not supported yet");
-  return format->read(specOrPath);
+  std::shared_ptr<const Model> model = format->read(specOrPath);
+  // Finite coordinates can still span more than a double holds (1e200 and -1e200: the box diagonal is Inf),
+  // and every tolerance is relative to that extent.
+  if (!std::isfinite(model->localBounds().diagonal()))
+    throw InputError(specOrPath + ": too large (the model's bounding box diagonal overflows a double)");
+  return model;
 }
 
 }  // namespace unidist

@@ -70,7 +70,10 @@ BoundingSphere Model::localBoundingSphere() const {
   // The half diagonal, a few ulps larger so that the rounded centre (off by ulps of its own size, which
   // can exceed the box's far from the origin) still holds every corner.
   constexpr double kEps = std::numeric_limits<double>::epsilon();
-  s.radius = 0.5 * (box.max - box.min).norm() * (1.0 + 8.0 * kEps) + 8.0 * kEps * s.center.norm();
+  const Eigen::Vector3d half = 0.5 * box.max - 0.5 * box.min;  // halves first: max - min may overflow
+  const double m = half.cwiseAbs().maxCoeff();
+  const double halfDiagonal = m > 0 ? m * (half / m).norm() : 0.0;  // scaled: the squares may overflow
+  s.radius = halfDiagonal * (1.0 + 8.0 * kEps) + 8.0 * kEps * s.center.norm();
   return s;
 }
 

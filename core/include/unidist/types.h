@@ -17,6 +17,10 @@ class InputError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// Largest coordinate magnitude a mesh vertex or a cloud point may have: their hierarchies keep float boxes
+/// (float overflows at 3.4e38; this leaves room for the boxes' rounding and sums).
+inline constexpr double kMaxModelCoordinate = 1e30;
+
 /// Axis-aligned box; empty when min > max. Unbounded models (a half-space) use infinite coordinates.
 struct Aabb {
   Eigen::Vector3d min = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
@@ -24,7 +28,14 @@ struct Aabb {
 
   bool empty() const { return (min.array() > max.array()).any(); }
   bool bounded() const { return min.allFinite() && max.allFinite(); }
-  double diagonal() const { return empty() ? 0.0 : (max - min).norm(); }
+  /// Computed from the halves and scaled, so that a box of finite extent never gives Inf (±1e300: max - min
+  /// and its squares overflow); Inf only when the diagonal itself exceeds the largest double.
+  double diagonal() const {
+    if (empty()) return 0.0;
+    const Eigen::Vector3d half = 0.5 * max - 0.5 * min;
+    const double m = half.cwiseAbs().maxCoeff();
+    return m > 0 ? 2.0 * (m * (half / m).norm()) : 0.0;
+  }
   Eigen::Vector3d center() const { return 0.5 * (min + max); }
   void extend(const Eigen::Vector3d& p) {
     min = min.cwiseMin(p);

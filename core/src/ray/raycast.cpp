@@ -3,12 +3,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
 namespace unidist {
 namespace {
-
-constexpr double kInf = std::numeric_limits<double>::infinity();
 
 void checkInputs(const Eigen::Isometry3d& X_WM, const Eigen::Vector3d& origin, const Eigen::Vector3d& dir,
                  double maxLength, double tolerance) {
