@@ -74,26 +74,32 @@ const T& as(const std::shared_ptr<const Model>& m) {
 TEST(PrimitiveSpec, BuildsEveryPrimitive) {
   EXPECT_EQ(as<Sphere>(parsePrimitiveSpec("sphere:r=1.5")).radius(), 1.5);
   EXPECT_EQ(as<Box>(parsePrimitiveSpec("box:hx=1,hy=2,hz=3")).halfExtents(), Eigen::Vector3d(1, 2, 3));
-  const auto& capsule = as<Capsule>(parsePrimitiveSpec("capsule:r=0.25,h=2"));
+  const auto capsuleModel = parsePrimitiveSpec("capsule:r=0.25,h=2");  // keeps the model alive
+  const auto& capsule = as<Capsule>(capsuleModel);
   EXPECT_EQ(capsule.radius(), 0.25);
   EXPECT_EQ(capsule.halfLength(), 2.0);
-  const auto& cylinder = as<Cylinder>(parsePrimitiveSpec("cylinder:r=0.5,h=0.75"));
+  const auto cylinderModel = parsePrimitiveSpec("cylinder:r=0.5,h=0.75");  // keeps the model alive
+  const auto& cylinder = as<Cylinder>(cylinderModel);
   EXPECT_EQ(cylinder.radius(), 0.5);
   EXPECT_EQ(cylinder.halfHeight(), 0.75);
-  const auto& cone = as<Cone>(parsePrimitiveSpec("cone:r=2,h=0.5"));
+  const auto coneModel = parsePrimitiveSpec("cone:r=2,h=0.5");  // keeps the model alive
+  const auto& cone = as<Cone>(coneModel);
   EXPECT_EQ(cone.radius(), 2.0);
   EXPECT_EQ(cone.halfHeight(), 0.5);
-  const auto& torus = as<Torus>(parsePrimitiveSpec("torus:R=1,r=0.25"));
+  const auto torusModel = parsePrimitiveSpec("torus:R=1,r=0.25");  // keeps the model alive
+  const auto& torus = as<Torus>(torusModel);
   EXPECT_EQ(torus.majorRadius(), 1.0);
   EXPECT_EQ(torus.tubeRadius(), 0.25);
-  const auto& plane = as<Plane>(parsePrimitiveSpec("plane:nx=0,ny=0,nz=1,d=-0.5"));
+  const auto planeModel = parsePrimitiveSpec("plane:nx=0,ny=0,nz=1,d=-0.5");  // keeps the model alive
+  const auto& plane = as<Plane>(planeModel);
   EXPECT_EQ(plane.normal(), Eigen::Vector3d::UnitZ());
   EXPECT_EQ(plane.offset(), -0.5);
 }
 
 TEST(PrimitiveSpec, KeysInAnyOrderAndNumbersInCSyntax) {
   EXPECT_EQ(as<Box>(parsePrimitiveSpec("box:hz=3,hx=1e-4,hy=+2")).halfExtents(), Eigen::Vector3d(1e-4, 2, 3));
-  const auto& torus = as<Torus>(parsePrimitiveSpec("torus:r=.5,R=1E1"));
+  const auto torusModel = parsePrimitiveSpec("torus:r=.5,R=1E1");  // keeps the model alive
+  const auto& torus = as<Torus>(torusModel);
   EXPECT_EQ(torus.majorRadius(), 10.0);
   EXPECT_EQ(torus.tubeRadius(), 0.5);
   EXPECT_EQ(as<Capsule>(parsePrimitiveSpec("capsule:h=3,r=1")).halfLength(), 3.0);
@@ -104,7 +110,8 @@ TEST(PrimitiveSpec, KeysInAnyOrderAndNumbersInCSyntax) {
 
 TEST(PrimitiveSpec, PlaneNormalIsNormalisedAndOffsetScaled) {
   // n·x <= d with n = (0, 3, 4), d = 10  ⇔  (0, 0.6, 0.8)·x <= 2.
-  const auto& plane = as<Plane>(parsePrimitiveSpec("plane:nx=0,ny=3,nz=4,d=10"));
+  const auto planeModel = parsePrimitiveSpec("plane:nx=0,ny=3,nz=4,d=10");  // keeps the model alive
+  const auto& plane = as<Plane>(planeModel);
   EXPECT_NEAR((plane.normal() - Eigen::Vector3d(0, 0.6, 0.8)).norm(), 0, 1e-15);
   EXPECT_NEAR(plane.offset(), 2.0, 1e-15);
   // Components whose squares under- or overflow still give the right unit normal.
