@@ -8,36 +8,37 @@
 #include "formats/readers.h"
 
 #include <algorithm>
-#include <cctype>
 #include <unordered_map>
 
 namespace unidist {
 namespace {
 
 bool isObj(const std::string& path) {
-  if (path.size() < 4) return false;
-  std::string ext = path.substr(path.size() - 4);
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return ext == ".obj";
+  const ModelFormat* format = findModelFormat(path);
+  return format && format->read == &formats::readObj;
 }
 
-/// The faces of one group with their vertices renumbered (only the vertices the group uses).
-PieceSource pieceOfGroup(const formats::ObjGroups& obj, int group) {
-  PieceSource piece;
-  piece.name = obj.groupNames[static_cast<std::size_t>(group)];
-  std::unordered_map<std::uint32_t, int> local;
+/// One piece per non-empty group, each with its faces' vertices renumbered (only the vertices it uses); one pass
+/// over the triangles.
+std::vector<PieceSource> piecesOfGroups(const formats::ObjGroups& obj) {
+  std::vector<PieceSource> pieces(obj.groupNames.size());
+  std::vector<std::unordered_map<std::uint32_t, int>> local(obj.groupNames.size());
   for (std::size_t t = 0; t < obj.triangles.size(); ++t) {
-    if (obj.groupOfTriangle[t] != group) continue;
+    const auto group = static_cast<std::size_t>(obj.groupOfTriangle[t]);
+    PieceSource& piece = pieces[group];
     std::array<int, 3> tri{};
-    for (int k = 0; k < 3; ++k) {
-      const std::uint32_t v = obj.triangles[t][static_cast<std::size_t>(k)];
-      const auto [it, added] = local.emplace(v, static_cast<int>(piece.vertices.size()));
+    for (std::size_t k = 0; k < 3; ++k) {
+      const std::uint32_t v = obj.triangles[t][k];
+      const auto [it, added] = local[group].emplace(v, static_cast<int>(piece.vertices.size()));
       if (added) piece.vertices.push_back(obj.vertices[v]);
-      tri[static_cast<std::size_t>(k)] = it->second;
+      tri[k] = it->second;
     }
     piece.triangles.push_back(tri);
   }
-  return piece;
+  for (std::size_t g = 0; g < pieces.size(); ++g) pieces[g].name = obj.groupNames[g];
+  pieces.erase(std::remove_if(pieces.begin(), pieces.end(), [](const PieceSource& p) { return p.triangles.empty(); }),
+               pieces.end());
+  return pieces;
 }
 
 PieceSource pieceOfMesh(const TriangleMesh& mesh, const std::string& name) {
@@ -61,15 +62,8 @@ PieceSource pieceOfBox(const Box& box, const std::string& name) {
 }  // namespace
 
 std::vector<PieceSource> loadConvexPieces(const std::string& specOrPath) {
+  if (!looksLikePrimitiveSpec(specOrPath) && isObj(specOrPath)) return piecesOfGroups(formats::readObjGroups(specOrPath));
   std::vector<PieceSource> pieces;
-  if (!looksLikePrimitiveSpec(specOrPath) && isObj(specOrPath)) {
-    const formats::ObjGroups obj = formats::readObjGroups(specOrPath);
-    for (int g = 0; g < static_cast<int>(obj.groupNames.size()); ++g) {
-      PieceSource piece = pieceOfGroup(obj, g);
-      if (!piece.triangles.empty()) pieces.push_back(std::move(piece));
-    }
-    return pieces;
-  }
   const std::shared_ptr<const Model> model = loadModel(specOrPath);
   if (const auto* mesh = dynamic_cast<const TriangleMesh*>(model.get())) {
     pieces.push_back(pieceOfMesh(*mesh, ""));

@@ -4,11 +4,11 @@
 #include "unidist/adapters/load.h"
 #include "unidist/adapters/spec.h"
 
+#include "extent_check.h"
 #include "formats/readers.h"
 
 #include <algorithm>
 #include <cctype>
-#include <cmath>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -56,16 +56,21 @@ const std::vector<ModelFormat>& modelFormats() {
   return kFormats;
 }
 
+const ModelFormat* findModelFormat(const std::string& path) {
+  const std::string lower = lowerCase(std::filesystem::path(path).filename().string());
+  const ModelFormat* format = nullptr;
+  for (const ModelFormat& f : modelFormats())
+    if (endsWith(lower, f.extension) && (!format || std::strlen(f.extension) > std::strlen(format->extension)))
+      format = &f;
+  return format;
+}
+
 std::shared_ptr<const Model> loadModel(const std::string& specOrPath) {
   if (looksLikePrimitiveSpec(specOrPath)) return parsePrimitiveSpec(specOrPath);
   if (specOrPath.empty()) throw InputError("empty model argument (expected a primitive spec or a file)");
   requireReadableFile(specOrPath);
 
-  const std::string lower = lowerCase(std::filesystem::path(specOrPath).filename().string());
-  const ModelFormat* format = nullptr;
-  for (const ModelFormat& f : modelFormats())
-    if (endsWith(lower, f.extension) && (!format || std::strlen(f.extension) > std::strlen(format->extension)))
-      format = &f;
+  const ModelFormat* format = findModelFormat(specOrPath);
   if (!format) {
     std::string known;
     for (const ModelFormat& f : modelFormats()) known += std::string(known.empty() ? "" : " ") + f.extension;
@@ -74,10 +79,7 @@ std::shared_ptr<const Model> loadModel(const std::string& specOrPath) {
   }
   if (!format->read) throw InputError(specOrPath + ": " + format->name + " files are not supported yet");
   std::shared_ptr<const Model> model = format->read(specOrPath);
-  // Finite coordinates can still span more than a double holds (1e200 and -1e200: the box diagonal is Inf),
-  // and every tolerance is relative to that extent.
-  if (!std::isfinite(model->localBounds().diagonal()))
-    throw InputError(specOrPath + ": too large (the model's bounding box diagonal overflows a double)");
+  requireFiniteExtent(*model, specOrPath);
   return model;
 }
 

@@ -4,6 +4,8 @@
 #include "unidist/adapters/spec.h"
 #include "unidist/primitives.h"
 
+#include "extent_check.h"
+
 #include <algorithm>
 #include <array>
 #include <cctype>
@@ -152,10 +154,7 @@ std::shared_ptr<const Model> parsePrimitiveSpec(const std::string& spec) {
   for (std::size_t i = 0; i < kMaxKeys && kind->keys[i]; ++i)
     if (!seen[i]) throw InputError(name + ": missing key '" + kind->keys[i] + "'");
   std::shared_ptr<const Model> model = kind->build(name, values);
-  // Finite sizes can still give an extent that overflows (sphere:r=1e308: its box diagonal exceeds the largest
-  // double), and every tolerance is relative to that diagonal. The plane is the one model that is unbounded by design.
-  if (model->type() != ModelType::Plane && !std::isfinite(model->localBounds().diagonal()))
-    throw InputError(name + ": too large (its bounding box diagonal overflows a double)");
+  requireFiniteExtent(*model, name);
   return model;
 }
 

@@ -3,6 +3,7 @@
 // One CSV row per (pair, regime): cases, worst and median |error|, median query time, share certified,
 // median bound width. Separations use the support-plane construction (exact truth); convex penetrations the
 // dense direction search; torus separations the dense angle search.
+#include "median.h"
 #include "core/pair_fixtures.h"
 
 #include <algorithm>
@@ -20,12 +21,6 @@ struct Row {
   double worstExcess = 0;  // how much more negative than the truth (deeper than the oracle's best direction)
   int certified = 0;
 };
-
-double median(std::vector<double> v) {
-  if (v.empty()) return 0;
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
-}
 
 void record(Row& row, const unidist::DistanceResult& r, double truth, double micros) {
   row.errors.push_back(std::abs(r.distance - truth));

@@ -5,6 +5,7 @@
 // Each configuration runs `runs` times (the two box piles interleaved, so that both see the same machine load); the
 // median steps/s is reported with the ratio native / unidist.
 // Usage: unidist_bench_bullet [steps=600] [runs=3] [boxes]   (CSV on stdout; "boxes": the box piles only)
+#include "median.h"
 #include "plugin/models.h"
 #include "unidist/bullet/plugin.h"
 #include "unidist/bullet/shapes.h"
@@ -67,11 +68,6 @@ double stepsPerSecond(const std::function<std::unique_ptr<btCollisionShape>(int)
     for (auto& b : rigid) world.removeRigidBody(b.get());
   }
   return steps / seconds;
-}
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 // and once as ODE's native dBox (ODE's own box–box and box–plane colliders), same poses, same loop. Each
 // configuration runs `runs` times; the median steps/s is reported with the ratio native / unidist.
 // Usage: unidist_bench_ode [steps=600] [runs=3] [boxes]   (CSV on stdout; "boxes": the box cases only)
+#include "median.h"
 #include "plugin/models.h"
 #include "unidist/mesh.h"
 #include "unidist/ode/geom.h"
@@ -83,11 +84,6 @@ double run(const std::vector<BodySpec>& specs, int steps) {
   dWorldDestroy(loop.world);
   dCloseODE();
   return steps / seconds;
-}
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
 }
 
 /// A 5 x 5 grid, two layers, with a small offset per body so that the pile is not perfectly regular.

@@ -7,6 +7,7 @@
 //            axes; tori: the ray version of the algorithm, finely sampled and polished) and median time.
 // Prints a table and "csv," lines (their headers as "# csv,"); tests/bench/run_raster_benchmarks.sh keeps them.
 // usage: unidist_bench_raster [query|tori|sweep|all] [runs]
+#include "median.h"
 #include "raster/raster_fixtures.h"
 #include "unidist/primitives.h"
 #include "unidist/raster/convex_union.h"
@@ -27,11 +28,6 @@ using unidist::raster::UnionDistanceOptions;
 using unidist::raster::UnionDistanceReport;
 
 namespace {
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
-}
 
 /// Median seconds of `runs` calls.
 double timeRuns(int runs, const std::function<void()>& call) {

@@ -4,6 +4,7 @@
 #        PLOT_ONLY=1 tests/bench/run_mesh_benchmarks.sh     redraws the plot from the committed CSV
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
+source "$ROOT/tests/bench/bench_lib.sh"
 BUILD="${1:-$ROOT/build}"
 OUT="$ROOT/docs/results"
 MODELS="$ROOT/../shared/acceptance/models"
@@ -15,8 +16,7 @@ if [ "${PLOT_ONLY:-0}" != 1 ]; then
   for group in build tori env points; do
     "$BUILD/tests/bench/unidist_bench_mesh_vs_fcl" "$MODELS" "$FCLDATA" "$group" | tee -a "$OUT/mesh_vs_fcl.txt"
   done
-  # Machine-readable copy: the "csv," lines, their header lines ("# csv,...") kept as comments.
-  grep -E '^(# )?csv,' "$OUT/mesh_vs_fcl.txt" | sed 's/^csv,//; s/^# csv,/# /' > "$OUT/mesh_vs_fcl.csv"
+  extract_csv "$OUT/mesh_vs_fcl.txt" > "$OUT/mesh_vs_fcl.csv"
 fi
 
 if command -v gnuplot >/dev/null; then

@@ -6,6 +6,7 @@
 #        PLOT_ONLY=1 tests/bench/run_nurbs_benchmarks.sh    redraws the plot from the committed CSV
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
+source "$ROOT/tests/bench/bench_lib.sh"
 BUILD="${1:-$ROOT/build}"
 POINTS="${2:-10000}"
 OUT="$ROOT/docs/results"
@@ -16,7 +17,7 @@ if [ "${PLOT_ONLY:-0}" != 1 ]; then
   for group in points pairs tolerance; do
     "$BUILD/tests/bench/unidist_bench_nurbs_vs_occt" "$group" "$POINTS" | tee -a "$OUT/nurbs_vs_occt.txt"
   done
-  grep -E '^(# )?csv,' "$OUT/nurbs_vs_occt.txt" | sed 's/^csv,//; s/^# csv,/# /' > "$OUT/nurbs_vs_occt.csv"
+  extract_csv "$OUT/nurbs_vs_occt.txt" > "$OUT/nurbs_vs_occt.csv"
 fi
 
 if command -v gnuplot >/dev/null; then

@@ -6,6 +6,7 @@
 #        PLOT_ONLY=1 tests/bench/run_raster_benchmarks.sh          redraws the plot from the committed CSV
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
+source "$ROOT/tests/bench/bench_lib.sh"
 BUILD="${1:-$ROOT/build}"
 RUNS="${2:-5}"
 OUT="$ROOT/docs/results"
@@ -13,7 +14,7 @@ mkdir -p "$OUT"
 if [ "${PLOT_ONLY:-0}" != 1 ]; then
   cmake --build "$BUILD" --target unidist_bench_raster -j2
   "$BUILD/tests/bench/unidist_bench_raster" all "$RUNS" | tee "$OUT/raster_bench.txt"
-  grep -E '^(# )?csv,' "$OUT/raster_bench.txt" | sed 's/^csv,//; s/^# csv,/# /' > "$OUT/raster_bench.csv"
+  extract_csv "$OUT/raster_bench.txt" > "$OUT/raster_bench.csv"
 fi
 
 if command -v gnuplot >/dev/null; then

@@ -26,13 +26,7 @@ PointCloud::PointCloud(std::vector<Eigen::Vector3d> points, std::vector<Eigen::V
     return prim::formatNumber(v.x()) + ", " + prim::formatNumber(v.y()) + ", " + prim::formatNumber(v.z());
   };
   for (std::size_t i = 0; i < points_.size(); ++i)
-    if (!points_[i].allFinite())
-      throw InputError("point cloud: point " + std::to_string(i) + " has a non-finite coordinate (" +
-                       text(points_[i]) + ")");
-  for (std::size_t i = 0; i < points_.size(); ++i)
-    if (points_[i].cwiseAbs().maxCoeff() > kMaxModelCoordinate)
-      throw InputError("point cloud: point " + std::to_string(i) + " has a coordinate beyond +-1e30 (" + text(points_[i]) +
-                       "); scale the model");
+    prim::requireModelCoordinate(points_[i], "point cloud: point", i);
   for (std::size_t i = 0; i < normals_.size(); ++i) {
     if (!normals_[i].allFinite())
       throw InputError("point cloud: normal " + std::to_string(i) + " has a non-finite coordinate (" +

@@ -76,14 +76,7 @@ TriangleMesh::TriangleMesh(std::vector<Eigen::Vector3d> vertices, std::vector<Tr
   stats_.inputVertices = vertices.size();
   stats_.inputTriangles = triangles.size();
   for (std::size_t i = 0; i < vertices.size(); ++i)
-    if (!vertices[i].allFinite())
-      throw InputError("mesh: vertex " + std::to_string(i) + " has a non-finite coordinate (" +
-                       prim::formatNumber(vertices[i].x()) + ", " + prim::formatNumber(vertices[i].y()) + ", " +
-                       prim::formatNumber(vertices[i].z()) + ")");
-  for (std::size_t i = 0; i < vertices.size(); ++i)
-    if (vertices[i].cwiseAbs().maxCoeff() > kMaxModelCoordinate)
-      throw InputError("mesh: vertex " + std::to_string(i) + " has a coordinate beyond +-1e30 (" +
-                       prim::formatNumber(vertices[i].cwiseAbs().maxCoeff()) + "); scale the model");
+    prim::requireModelCoordinate(vertices[i], "mesh: vertex", i);
   if (triangles.empty()) throw InputError("mesh: no triangles");
   if (vertices.size() >= std::numeric_limits<std::uint32_t>::max())
     throw InputError("mesh: too many vertices (" + std::to_string(vertices.size()) + ")");

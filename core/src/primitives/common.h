@@ -16,6 +16,10 @@ std::string formatNumber(double x);
 /// Throws InputError "<shape>: <field> must be finite and > 0 (got <value>)" unless value is.
 void requirePositive(const char* shape, const char* field, double value);
 
+/// Throws InputError "<what> <index> has a non-finite coordinate (x, y, z)" or "... has a coordinate beyond
+/// +-1e30 (x, y, z); scale the model" (kMaxModelCoordinate: the mesh and cloud hierarchies keep float boxes).
+void requireModelCoordinate(const Eigen::Vector3d& p, const char* what, std::size_t index);
+
 /// A number with %.17g, as describe() prints sizes.
 std::string exact(double x);
 

@@ -34,6 +34,14 @@ std::string formatNumber(double x) {
   return buf;
 }
 
+void requireModelCoordinate(const Eigen::Vector3d& p, const char* what, std::size_t index) {
+  const bool finite = p.allFinite();
+  if (finite && p.cwiseAbs().maxCoeff() <= kMaxModelCoordinate) return;
+  throw InputError(std::string(what) + " " + std::to_string(index) + (finite ? " has a coordinate beyond +-1e30 (" : " has a non-finite coordinate (") +
+                   formatNumber(p.x()) + ", " + formatNumber(p.y()) + ", " + formatNumber(p.z()) +
+                   (finite ? "); scale the model" : ")"));
+}
+
 std::string exact(double x) {
   char buf[40];
   std::snprintf(buf, sizeof buf, "%.17g", x);

@@ -24,6 +24,9 @@ struct ModelFormat {
 /// Every format loadModel recognises, in the order of the contract.
 const std::vector<ModelFormat>& modelFormats();
 
+/// The format a file name's extension selects (case-insensitive, the longest matching extension), or null.
+const ModelFormat* findModelFormat(const std::string& path);
+
 /// A primitive spec when the text looks like `name:key=value,...` (looksLikePrimitiveSpec), otherwise a file
 /// path: a missing or unreadable file, an unknown extension or a format without a reader throws InputError
 /// naming the file.
