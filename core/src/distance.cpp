@@ -12,6 +12,9 @@
 namespace unidist {
 namespace {
 
+/// First tolerance of an overlap test, relative to the larger posed bounding-box diagonal.
+constexpr double kOverlapCoarseTolerance = 1e-3;
+
 void requireValidPose(const Eigen::Isometry3d& X, const char* which) {
   if (!X.matrix().allFinite()) throw InputError(std::string("pose of ") + which + " has a NaN or infinite entry");
   const Eigen::Matrix3d R = X.linear();
@@ -25,9 +28,24 @@ double worldDiagonal(const Model& m, const Eigen::Isometry3d& X) {
   return box.bounded() ? box.transformed(X).diagonal() : 0.0;
 }
 
+/// The larger posed bounding-box diagonal (1 when both models are unbounded): what default tolerances scale with.
+double sizeOfPair(const Model& a, const Eigen::Isometry3d& X_WA, const Model& b, const Eigen::Isometry3d& X_WB) {
+  const double diagonal = std::max(worldDiagonal(a, X_WA), worldDiagonal(b, X_WB));
+  return diagonal > 0 ? diagonal : 1.0;
+}
+
 /// Magnitude of the coordinates involved, for rounding-level tolerances.
 double coordinateScale(const Model& a, const Eigen::Isometry3d& X_WA, const Model& b, const Eigen::Isometry3d& X_WB) {
   return X_WA.translation().norm() + X_WB.translation().norm() + worldDiagonal(a, X_WA) + worldDiagonal(b, X_WB);
+}
+
+/// A cheap proved lower bound on |distance| of separated models: the gap between their bounding spheres (0 when
+/// they meet or a model is unbounded). What a relative tolerance may be applied to.
+double provedSeparation(const Model& a, const Eigen::Isometry3d& X_WA, const Model& b, const Eigen::Isometry3d& X_WB) {
+  if (!a.localBounds().bounded() || !b.localBounds().bounded()) return 0.0;
+  const BoundingSphere sa = a.localBoundingSphere(), sb = b.localBoundingSphere();
+  const double gap = (X_WA * sa.center - X_WB * sb.center).norm() - sa.radius - sb.radius;
+  return std::max(gap, 0.0);
 }
 
 detail::QueryContext settle(const Model& a, const Eigen::Isometry3d& X_WA, const Model& b,
@@ -37,10 +55,15 @@ detail::QueryContext settle(const Model& a, const Eigen::Isometry3d& X_WA, const
   for (double inflate : {options.inflateA, options.inflateB})
     if (!std::isfinite(inflate) || inflate < 0) throw InputError("inflation radius must be finite and >= 0");
   if (options.maxIterations < 1) throw InputError("maxIterations must be >= 1");
+  if (!std::isfinite(options.relativeTolerance) || options.relativeTolerance < 0)
+    throw InputError("relative tolerance must be finite and >= 0");
   double tol = options.tolerance < 0 ? defaultTolerance(a, X_WA, b, X_WB) : options.tolerance;
+  tol = std::max(tol, options.relativeTolerance * provedSeparation(a, X_WA, b, X_WB));
   // "0" asks for what double precision allows: a few ulps of the coordinates involved.
   const double floor = 64 * std::numeric_limits<double>::epsilon() * std::max(coordinateScale(a, X_WA, b, X_WB), 1e-300);
-  return {std::max(tol, floor), options.maxIterations};
+  detail::QueryContext ctx{std::max(tol, floor), options.maxIterations};
+  ctx.overlapVerdictOnly = options.compute != Compute::SignedDistance;
+  return ctx;
 }
 
 /// Grows A and B by balls. Exact for convex pairs (the Minkowski difference grows by a ball) and for a
@@ -68,9 +91,17 @@ void inflate(DistanceResult& r, const detail::PosedModel& a, const detail::Posed
 
 }  // namespace
 
+const char* toString(Compute c) {
+  switch (c) {
+    case Compute::Overlap: return "overlap";
+    case Compute::Separation: return "separation";
+    case Compute::SignedDistance: return "signed-distance";
+  }
+  return "?";
+}
+
 double defaultTolerance(const Model& a, const Eigen::Isometry3d& X_WA, const Model& b, const Eigen::Isometry3d& X_WB) {
-  const double diagonal = std::max(worldDiagonal(a, X_WA), worldDiagonal(b, X_WB));
-  return 1e-9 * (diagonal > 0 ? diagonal : 1.0);
+  return 1e-9 * sizeOfPair(a, X_WA, b, X_WB);
 }
 
 namespace {
@@ -82,8 +113,43 @@ DistanceResult answer(detail::PairFn routine, const Model& a, const Eigen::Isome
   requireValidPose(X_WB, "B");
   const detail::QueryContext ctx = settle(a, X_WA, b, X_WB, options);
   const detail::PosedModel pa{a, X_WA}, pb{b, X_WB};
-  DistanceResult r = routine(pa, pb, ctx);
-  inflate(r, pa, pb, options.inflateA, options.inflateB, ctx.tolerance);
+  bool measured = false;  // the last run was a full query (no verdict-only shortcut)
+  const auto run = [&](detail::QueryContext c) {
+    DistanceResult r = routine(pa, pb, c);
+    // A verdict-only routine proves an overlap (upperBound <= 0) or that the models are apart (lowerBound > 0,
+    // the distance not measured to the tolerance); when it did neither (surfaces within its tolerance, or its
+    // search ran out), only the full query settles it.
+    if (c.overlapVerdictOnly && !(r.upperBound <= 0) && !(r.lowerBound > 0)) {
+      c.overlapVerdictOnly = false;
+      r = routine(pa, pb, c);
+    }
+    measured = !c.overlapVerdictOnly;
+    inflate(r, pa, pb, options.inflateA, options.inflateB, c.tolerance);
+    return r;
+  };
+  if (options.compute == Compute::SignedDistance) return run(ctx);
+  if (options.compute == Compute::Separation) {
+    // The verdict first: an overlap is left unmeasured; models proved apart are then measured in full.
+    DistanceResult r = run(ctx);
+    if (r.upperBound <= 0 || measured) return r;
+    detail::QueryContext full = ctx;
+    full.overlapVerdictOnly = false;
+    return run(full);
+  }
+  // A verdict needs only the sign: a coarse pass decides every pair that is not nearly touching; the requested
+  // tolerance is spent only on the rest.
+  const auto decided = [](const DistanceResult& r) { return r.lowerBound > 0 || r.upperBound <= 0; };
+  detail::QueryContext coarse = ctx;
+  coarse.tolerance = std::max(ctx.tolerance, kOverlapCoarseTolerance * sizeOfPair(a, X_WA, b, X_WB));
+  if (coarse.tolerance > ctx.tolerance) {
+    DistanceResult r = run(coarse);
+    if (decided(r)) {
+      r.status = Status::Certified;  // the verdict is proved, which is all that was asked
+      return r;
+    }
+  }
+  DistanceResult r = run(ctx);
+  if (decided(r)) r.status = Status::Certified;
   return r;
 }
 

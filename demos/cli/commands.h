@@ -21,6 +21,7 @@ struct DistanceArgs {
 struct InfoArgs {
   std::string model;
   bool json = false;
+  bool build = false;  ///< build every lazily built structure first, to report what it costs
 };
 
 struct ContactsArgs {

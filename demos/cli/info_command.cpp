@@ -1,4 +1,5 @@
-// `unidist info A [--json]`: what a model is (type, description, bounds, solidity, convexity, memory).
+// `unidist info A [--json] [--build]`: what a model is (type, description, bounds, solidity, convexity, memory,
+// and the acceleration structures it builds lazily: whether each exists yet and its size).
 #include "commands.h"
 #include "output.h"
 
@@ -13,7 +14,15 @@ std::string runInfo(const InfoArgs& args) {
   } catch (const InputError& e) {
     throw InputError(std::string("A: ") + e.what());
   }
+  if (args.build) m->buildStructures();
   const Aabb box = m->localBounds();
+  std::string structuresJson, structuresText;
+  for (const StructureReport& s : m->structures()) {
+    structuresJson += std::string(structuresJson.empty() ? "" : ", ") + "{\"name\": " + jsonString(s.name) +
+                      ", \"built\": " + (s.built ? "true" : "false") + ", \"bytes\": " + std::to_string(s.bytes) + "}";
+    structuresText += std::string(structuresText.empty() ? "" : ", ") + s.name + " " +
+                      (s.built ? std::to_string(s.bytes) + " bytes" : std::string("(built on first need)"));
+  }
   const BoundingSphere ball = m->localBoundingSphere();
   const bool bounded = box.bounded();
 
@@ -24,7 +33,7 @@ std::string runInfo(const InfoArgs& args) {
           ", \"max\": " + jsonVector(box.max) + "}, \"bounding_sphere\": {\"center\": " + jsonVector(ball.center) +
           ", \"radius\": " + jsonNumber(ball.radius) + "}, \"solid\": " + (m->isSolid() ? "true" : "false") +
           ", \"convex\": " + (m->isConvex() ? "true" : "false") +
-          ", \"memory_bytes\": " + std::to_string(m->memoryBytes()) + "}\n";
+          ", \"memory_bytes\": " + std::to_string(m->memoryBytes()) + ", \"structures\": [" + structuresJson + "]}\n";
   } else {
     out += "type         " + std::string(toString(m->type())) + "\n";
     out += "model        " + m->describe() + "\n";
@@ -34,6 +43,7 @@ std::string runInfo(const InfoArgs& args) {
     out += "solid        " + std::string(m->isSolid() ? "yes" : "no (no inside: unsigned distances)") + "\n";
     out += "convex       " + std::string(m->isConvex() ? "yes" : "no") + "\n";
     out += "memory       " + std::to_string(m->memoryBytes()) + " bytes\n";
+    if (!structuresText.empty()) out += "structures   " + structuresText + "\n";
   }
   return out;
 }

@@ -69,6 +69,8 @@ int run(int argc, char** argv) {
   CLI::App* infoCmd = app.add_subcommand("info", "What a model is: type, size, bounds, solidity, memory");
   infoCmd->add_option("A", info.model, "A model file or a primitive spec")->required();
   infoCmd->add_flag("--json", info.json, "Print one JSON object");
+  infoCmd->add_flag("--build", info.build,
+                    "Build the model's acceleration structures first (queries build them lazily) and report their memory");
 
   unidist::cli::ContactsArgs cont;
   CLI::App* contCmd =

@@ -23,9 +23,7 @@ struct Minimum {
   double distance;
 };
 
-inline Vec toD(const VecL& v) {
-  return Vec(static_cast<double>(v.x()), static_cast<double>(v.y()), static_cast<double>(v.z()));
-}
+using meshfix::toD;
 
 /// Closest point of segment [a, b] to q.
 inline VecL segmentPoint(const VecL& q, const VecL& a, const VecL& b) {

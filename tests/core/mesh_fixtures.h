@@ -27,6 +27,7 @@ struct Soup {
 };
 
 inline VecL toL(const Vec& v) { return v.cast<long double>(); }
+inline Vec toD(const VecL& v) { return v.cast<double>(); }
 
 /// Squared distance from q to segment [a, b] (long double).
 inline LD segmentSq(const VecL& q, const VecL& a, const VecL& b) {
@@ -214,6 +215,50 @@ inline std::vector<Vec> queryPoints(const Soup& s, int count, double near, doubl
     }
   }
   return out;
+}
+
+/// Exact (long double) squared distances between segments and between triangles, for brute-force oracles.
+inline LD segSegSq(const VecL& p1, const VecL& q1, const VecL& p2, const VecL& q2) {
+  LD best = std::min({segmentSq(p1, p2, q2), segmentSq(q1, p2, q2), segmentSq(p2, p1, q1),
+                      segmentSq(q2, p1, q1)});
+  const VecL d1 = q1 - p1, d2 = q2 - p2, r = p1 - p2;
+  const LD a = d1.dot(d1), e = d2.dot(d2), b = d1.dot(d2), c = d1.dot(r), f = d2.dot(r);
+  const LD det = a * e - b * b;
+  if (det > 1e-15L * a * e) {
+    const LD s = (b * f - c * e) / det, t = (a * f - b * c) / det;
+    if (s >= 0 && s <= 1 && t >= 0 && t <= 1) best = std::min(best, (r + s * d1 - t * d2).squaredNorm());
+  }
+  return best;
+}
+
+/// Whether edge [p, q] crosses triangle (a, b, c).
+inline bool edgeCrosses(const VecL& p, const VecL& q, const VecL& a, const VecL& b, const VecL& c) {
+  const VecL n = (b - a).cross(c - a);
+  const LD dp = n.dot(p - a), dq = n.dot(q - a);
+  if (dp * dq > 0 || (dp == 0 && dq == 0)) return false;
+  const VecL x = p + (dp / (dp - dq)) * (q - p);
+  const VecL e0 = b - a, e1 = c - a, w = x - a;
+  const LD A = e0.dot(e0), B = e0.dot(e1), C = e1.dot(e1), D = e0.dot(w), E = e1.dot(w);
+  const LD det = A * C - B * B;
+  if (!(det > 0)) return false;
+  const LD s = (C * D - B * E) / det, t = (A * E - B * D) / det;
+  return s >= 0 && t >= 0 && s + t <= 1;
+}
+
+/// Squared distance of two triangles. crossB = false skips A's edges crossing B: for a B of (near) zero area
+/// (a segment as (p, q, q)), whose plane is noise, such a crossing is never needed (B's own edges carry it).
+inline LD triTriSq(const std::array<VecL, 3>& A, const std::array<VecL, 3>& B, bool crossB = true) {
+  for (int i = 0; i < 3; ++i)
+    if ((crossB && edgeCrosses(A[i], A[(i + 1) % 3], B[0], B[1], B[2])) ||
+        edgeCrosses(B[i], B[(i + 1) % 3], A[0], A[1], A[2]))
+      return 0;
+  LD best = std::numeric_limits<LD>::infinity();
+  for (int i = 0; i < 3; ++i) {
+    best = std::min(best, meshfix::triangleSq(toD(A[i]), toD(B[0]), toD(B[1]), toD(B[2])));
+    best = std::min(best, meshfix::triangleSq(toD(B[i]), toD(A[0]), toD(A[1]), toD(A[2])));
+    for (int j = 0; j < 3; ++j) best = std::min(best, segSegSq(A[i], A[(i + 1) % 3], B[j], B[(j + 1) % 3]));
+  }
+  return best;
 }
 
 inline unidist::TriangleMesh makeMesh(const Soup& s) { return unidist::TriangleMesh(s.vertices, s.triangles); }

@@ -32,48 +32,9 @@ using unidist::DistanceResult;
 using unidist::PointCloud;
 using unidist::TriangleMesh;
 
-LD segSegSq(const VecL& p1, const VecL& q1, const VecL& p2, const VecL& q2) {
-  LD best = std::min({meshfix::segmentSq(p1, p2, q2), meshfix::segmentSq(q1, p2, q2), meshfix::segmentSq(p2, p1, q1),
-                      meshfix::segmentSq(q2, p1, q1)});
-  const VecL d1 = q1 - p1, d2 = q2 - p2, r = p1 - p2;
-  const LD a = d1.dot(d1), e = d2.dot(d2), b = d1.dot(d2), c = d1.dot(r), f = d2.dot(r);
-  const LD det = a * e - b * b;
-  if (det > 1e-15L * a * e) {
-    const LD s = (b * f - c * e) / det, t = (a * f - b * c) / det;
-    if (s >= 0 && s <= 1 && t >= 0 && t <= 1) best = std::min(best, (r + s * d1 - t * d2).squaredNorm());
-  }
-  return best;
-}
-
-/// Whether edge [p, q] passes through triangle (a, b, c) (crossing its plane inside it).
-bool edgeCrosses(const VecL& p, const VecL& q, const VecL& a, const VecL& b, const VecL& c) {
-  const VecL n = (b - a).cross(c - a);
-  const LD dp = n.dot(p - a), dq = n.dot(q - a);
-  if (dp * dq > 0 || (dp == 0 && dq == 0)) return false;
-  const VecL x = p + (dp / (dp - dq)) * (q - p);
-  const VecL e0 = b - a, e1 = c - a, w = x - a;
-  const LD A = e0.dot(e0), B = e0.dot(e1), C = e1.dot(e1), D = e0.dot(w), E = e1.dot(w);
-  const LD det = A * C - B * B;
-  const LD s = (C * D - B * E) / det, t = (A * E - B * D) / det;
-  return s >= 0 && t >= 0 && s + t <= 1;
-}
-
-/// crossB = false skips A's edges crossing B: for a B of (near) zero area, whose plane is noise, such a
-/// crossing is never needed (B's own edges then carry the distance).
-LD triTriSq(const std::array<VecL, 3>& A, const std::array<VecL, 3>& B, bool crossB = true) {
-  for (int i = 0; i < 3; ++i)
-    if ((crossB && edgeCrosses(A[i], A[(i + 1) % 3], B[0], B[1], B[2])) ||
-        edgeCrosses(B[i], B[(i + 1) % 3], A[0], A[1], A[2]))
-      return 0;
-  LD best = std::numeric_limits<LD>::infinity();
-  auto pt = [](const VecL& v) { return Vec(static_cast<double>(v.x()), static_cast<double>(v.y()), static_cast<double>(v.z())); };
-  for (int i = 0; i < 3; ++i) {
-    best = std::min(best, meshfix::triangleSq(pt(A[i]), pt(B[0]), pt(B[1]), pt(B[2])));
-    best = std::min(best, meshfix::triangleSq(pt(B[i]), pt(A[0]), pt(A[1]), pt(A[2])));
-    for (int j = 0; j < 3; ++j) best = std::min(best, segSegSq(A[i], A[(i + 1) % 3], B[j], B[(j + 1) % 3]));
-  }
-  return best;
-}
+using meshfix::edgeCrosses;
+using meshfix::segSegSq;
+using meshfix::triTriSq;
 
 /// A shape for the tests: a mesh soup or a cloud (no triangles).
 struct Shape {

@@ -21,10 +21,11 @@
 
 namespace unidist {
 
-struct ManifoldOptions {
+/// The dial (QueryOptions) with a simulation's default: a negative tolerance means 1e-4 × the smaller bounding
+/// diagonal of the pair (contacts need not be more exact than the solver that uses them).
+struct ManifoldOptions : QueryOptions {
   double margin = 0;      ///< report contacts with distance <= margin (>= 0): the engine's contact threshold
   int maxContacts = 4;    ///< > 0
-  double tolerance = -1;  ///< absolute accuracy of each query; < 0: 1e-4 x the smaller bounding diagonal
   bool fillPatch = true;  ///< tilt A to find the rest of a resting patch (see above)
 };
 

@@ -14,19 +14,20 @@
 #pragma once
 
 #include "unidist/model.h"
+#include "unidist/query_options.h"
 
 #include <vector>
 
 namespace unidist {
 
-struct ContactOptions {
+/// The dial (QueryOptions): tolerance is the absolute slack for the tests (ties, "touching") and the accuracy
+/// of the global queries; negative → 1e-9 × the larger bounding-box diagonal; never below 1e-12 × that
+/// diagonal (rounding). relativeTolerance and maxIterations go to the global queries.
+struct ContactOptions : QueryOptions {
   /// Report local minima with distance <= margin (>= 0). 0: touching or penetrating only.
   double margin = 0;
   /// At most this many contacts (the deepest first, then spread by position); 0: no limit.
   int maxContacts = 0;
-  /// Absolute slack for the tests (ties, "touching") and accuracy of the global queries; negative → 1e-9 × the
-  /// larger bounding-box diagonal; never below 1e-12 × that diagonal (rounding).
-  double tolerance = -1;
 };
 
 struct Contact {

@@ -3,16 +3,28 @@
 #pragma once
 
 #include "unidist/model.h"
+#include "unidist/query_options.h"
 
 namespace unidist {
 
-struct DistanceOptions {
-  /// Absolute accuracy (unit: model length). The distance is within tolerance of the truth and each point
-  /// within tolerance of its surface. Negative (the default) → 1e-9 × the larger bounding-box diagonal of the
-  /// two posed models; 0 → as exact as double precision allows.
-  double tolerance = -1;
-  /// Cap on the work of iterative methods (GJK/EPA iterations, alternating steps, branch-and-bound rounds).
-  int maxIterations = 100000;
+/// What distance() computes; the cheaper kinds stop earlier.
+enum class Compute {
+  /// Whether the models overlap: stops as soon as the bounds exclude 0 (lowerBound > 0: apart; upperBound <= 0:
+  /// touching or overlapping), trying a coarse tolerance first; within the tolerance of touching it is decided
+  /// by `distance <= 0`. Neither a separation nor an overlap is measured to the tolerance (lowerBound may be
+  /// −inf); status Certified says the verdict is proved.
+  Overlap,
+  /// The distance of separated models, at the requested tolerance; an overlap is proved but not measured
+  /// (upperBound <= 0, lowerBound may be −inf): no penetration-depth solve.
+  Separation,
+  /// The signed distance, penetration depth included (the default).
+  SignedDistance,
+};
+
+const char* toString(Compute c);
+
+struct DistanceOptions : QueryOptions {
+  Compute compute = Compute::SignedDistance;
   /// Grow A / B by a ball of this radius (a swept sphere); >= 0.
   double inflateA = 0, inflateB = 0;
 };
@@ -27,6 +39,11 @@ struct DistanceResult {
   int iterations = 0;
   Status status = Status::Bounded;
   const char* method = "";                              ///< which algorithm answered (for diagnostics and docs)
+
+  /// The achieved accuracy: the true distance is within this of `distance` (the width of the proved bounds).
+  double errorBound() const { return upperBound - lowerBound; }
+  /// The overlap verdict: touching or overlapping (proved when upperBound <= 0; within the tolerance otherwise).
+  bool overlapping() const { return distance <= 0; }
 };
 
 /// Tolerance used when options.tolerance < 0: 1e-9 × the larger bounding-box diagonal of the posed models

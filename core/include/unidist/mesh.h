@@ -117,6 +117,9 @@ class TriangleMesh final : public Model {
   void splitCell(const SurfaceCell& cell, std::vector<SurfaceCell>& out) const override;
   std::string describe() const override;
   std::size_t memoryBytes() const override;
+  /// "bvh" (every query) and "winding" (inside tests of points far from the surface: containment).
+  std::vector<StructureReport> structures() const override;
+  void buildStructures() const override;
 
   const Stats& stats() const { return stats_; }
   /// The cleaned model: welded, unused vertices dropped, triangles dropped and (for a flipped solid) reoriented.

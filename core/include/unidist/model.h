@@ -27,6 +27,13 @@ struct SurfaceCell {
   double u0 = 0, u1 = 0, v0 = 0, v1 = 0;
 };
 
+/// One acceleration structure a model builds on first need, once (for `unidist info`, tests and benchmarks).
+struct StructureReport {
+  std::string name;       ///< e.g. "bvh", "winding", "point-tree", "patch-tree", "contact-mesh"
+  bool built = false;
+  std::size_t bytes = 0;  ///< what it holds now (0 until built; a patch tree grows as queries refine it)
+};
+
 class Model {
  public:
   virtual ~Model() = default;
@@ -60,6 +67,10 @@ class Model {
   virtual std::string describe() const = 0;
   /// Bytes held by the model, including any acceleration structure built so far.
   virtual std::size_t memoryBytes() const = 0;
+  /// The structures this model builds lazily and whether each exists yet; empty for models that need none.
+  virtual std::vector<StructureReport> structures() const { return {}; }
+  /// Builds every lazily built structure now: before a real-time loop, or to see what they cost.
+  virtual void buildStructures() const {}
 };
 
 }  // namespace unidist

@@ -130,6 +130,9 @@ class NurbsModel final : public Model {
   void splitCell(const SurfaceCell& cell, std::vector<SurfaceCell>& out) const override;
   std::string describe() const override;
   std::size_t memoryBytes() const override;
+  /// "patch-tree": the roots exist from construction (they bound the model); nodes below are refined, and kept
+  /// down to a fixed depth, only where queries look.
+  std::vector<StructureReport> structures() const override;
 
   const std::vector<NurbsSurface>& surfaces() const { return surfaces_; }
   const std::vector<RationalBezierPatch>& patches() const { return patches_; }

@@ -45,6 +45,9 @@ class PointCloud final : public Model {
   void splitCell(const SurfaceCell& cell, std::vector<SurfaceCell>& out) const override;
   std::string describe() const override;
   std::size_t memoryBytes() const override;
+  /// "point-tree" (every query).
+  std::vector<StructureReport> structures() const override;
+  void buildStructures() const override { tree(); }
 
   const std::vector<Eigen::Vector3d>& points() const { return points_; }
   /// Empty when the cloud has no normals; else one unit (or zero: none) normal per point.

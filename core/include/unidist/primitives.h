@@ -64,6 +64,9 @@ class Box final : public Primitive {
   /// The same solid as 12 outward triangles (its point queries agree with the box's), built on first use, once,
   /// thread-safely: the contact search works on it, and a simulation asks every step.
   const TriangleMesh& asMesh() const;
+  /// "contact-mesh" (asMesh(), for contact sets only).
+  std::vector<StructureReport> structures() const override;
+  void buildStructures() const override { asMesh(); }
 
  private:
   Eigen::Vector3d h_;

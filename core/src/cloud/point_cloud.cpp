@@ -112,6 +112,11 @@ std::string PointCloud::describe() const {
   return "point cloud: " + std::to_string(points_.size()) + " points" + (normals_.empty() ? "" : ", with normals");
 }
 
+std::vector<StructureReport> PointCloud::structures() const {
+  const cloud::PointTree* t = treeReady_.load(std::memory_order_acquire);
+  return {{"point-tree", t != nullptr, t ? sizeof(*t) + t->memoryBytes() : 0}};
+}
+
 std::size_t PointCloud::memoryBytes() const {
   std::size_t bytes = sizeof(*this) + points_.capacity() * sizeof(Eigen::Vector3d) +
                       normals_.capacity() * sizeof(Eigen::Vector3d);

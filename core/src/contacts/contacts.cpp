@@ -108,6 +108,7 @@ std::vector<Contact> contacts(const Model& a, const Eigen::Isometry3d& X_WA, con
   const Working wa = working(a), wb = working(b);
   // The global queries honour the caller's tolerance too: it is what makes contacts cheap enough per step.
   DistanceOptions global;
+  static_cast<QueryOptions&>(global) = options;
   if (options.tolerance >= 0) global.tolerance = tol;
 
   std::vector<Contact> out;

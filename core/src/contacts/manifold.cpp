@@ -216,7 +216,8 @@ bool apartWithoutQuery(const Model& a, const Eigen::Isometry3d& X_WA, const Mode
 bool meshLike(const Model& m) { return m.type() == ModelType::Box || m.type() == ModelType::Mesh; }
 
 std::vector<Contact> globalContacts(const Model& a, const Eigen::Isometry3d& X_WA, const Model& b,
-                                    const Eigen::Isometry3d& X_WB, double margin, double tol, bool patch) {
+                                    const Eigen::Isometry3d& X_WB, double margin, const QueryOptions& dial, bool patch) {
+  const double tol = dial.tolerance;
   if (a.type() == ModelType::Box && b.type() == ModelType::Box) {
     // Clipping gives the whole contact polygon with exact depths: no feature search, no patch to fill.
     std::vector<Contact> cs = contact::boxBoxContacts(static_cast<const Box&>(a), X_WA, static_cast<const Box&>(b),
@@ -226,15 +227,15 @@ std::vector<Contact> globalContacts(const Model& a, const Eigen::Isometry3d& X_W
   }
   if (apartWithoutQuery(a, X_WA, b, X_WB, margin)) return {};
   ContactOptions co;
+  static_cast<QueryOptions&>(co) = dial;
   co.margin = margin;
-  co.tolerance = tol;
   std::vector<Contact> cs = contacts(a, X_WA, b, X_WB, co);
   if (a.isConvex() && b.isConvex() && meshLike(a) && meshLike(b)) {
     // Two convex polytopes (boxes, convex meshes) go through the mesh feature search, which reports corners but
     // not the global answer: add it (exact minimum translation when they overlap), the contact a solver wants
     // first. Every other pair's contacts() already holds the global answer.
     DistanceOptions query;
-    query.tolerance = tol;
+    static_cast<QueryOptions&>(query) = dial;
     const DistanceResult d = distance(a, X_WA, b, X_WB, query);
     if (d.distance <= margin) {
       Contact c;
@@ -268,8 +269,9 @@ void checkOptions(const ManifoldOptions& o) {
 
 /// The contacts at one pose of A (the true one, or A lifted off B), through the cache when it holds.
 std::vector<Contact> contactsAt(const Model& a, const Eigen::Isometry3d& X_WA, const Model& b,
-                                const Eigen::Isometry3d& X_WB, double margin, double tol, bool patch,
+                                const Eigen::Isometry3d& X_WB, double margin, const QueryOptions& dial, bool patch,
                                 ContactCache* cache) {
+  const double tol = dial.tolerance;
   const Eigen::Isometry3d X_AB = X_WA.inverse() * X_WB;
   std::vector<Contact> out;
   if (cache && cache->valid && relativeMotion(a, b, cache->X_AB, X_AB) <= cache->guard) {
@@ -282,11 +284,11 @@ std::vector<Contact> contactsAt(const Model& a, const Eigen::Isometry3d& X_WA, c
     contact::mergeDuplicates(out, 4 * tol);
     return out;
   }
-  if (!cache) return globalContacts(a, X_WA, b, X_WB, margin, tol, patch);
+  if (!cache) return globalContacts(a, X_WA, b, X_WB, margin, dial, patch);
   // Search a margin grown by twice the guard: while the pair moves less than the guard, every point pair now
   // within the margin was within the grown margin then, so its region holds a cached local minimum.
   const double guard = kGuardInTolerances * tol;
-  const std::vector<Contact> all = globalContacts(a, X_WA, b, X_WB, margin + 2 * guard, tol, patch);
+  const std::vector<Contact> all = globalContacts(a, X_WA, b, X_WB, margin + 2 * guard, dial, patch);
   ++cache->globalSearches;
   cache->valid = true;
   cache->X_AB = X_AB;
@@ -313,6 +315,8 @@ std::vector<Contact> manifoldContacts(const Model& a, const Eigen::Isometry3d& X
   if (!X_WA.matrix().allFinite() || !X_WB.matrix().allFinite())
     throw InputError("manifoldContacts: non-finite pose");
   const double tol = options.tolerance >= 0 ? options.tolerance : defaultSimulationTolerance(a, b);
+  QueryOptions dial = options;  // the caller's dial with the tolerance settled
+  dial.tolerance = tol;
 
   // Resting bodies sink a little into each other every step. Overlap is where contacts are expensive (a
   // global penetration search) and ill-posed (a box corner below an open floor has no inside to be in), so
@@ -326,7 +330,7 @@ std::vector<Contact> manifoldContacts(const Model& a, const Eigen::Isometry3d& X
     const Eigen::Vector3d n = X_WB.linear() * cache->liftNormal_B;
     Eigen::Isometry3d X_WAl = X_WA;
     X_WAl.pretranslate(-skin * n);
-    out = contactsAt(a, X_WAl, b, X_WB, options.margin + skin, tol, options.fillPatch, cache);
+    out = contactsAt(a, X_WAl, b, X_WB, options.margin + skin, dial, options.fillPatch, cache);
     lifted = std::none_of(out.begin(), out.end(), [&](const Contact& c) { return c.distance < -tol; });
     if (lifted) {
       for (Contact& c : out) {
@@ -342,7 +346,7 @@ std::vector<Contact> manifoldContacts(const Model& a, const Eigen::Isometry3d& X
       cache->valid = false;  // its contacts belong to the lifted pose
     }
   }
-  if (!lifted) out = contactsAt(a, X_WA, b, X_WB, options.margin, tol, options.fillPatch, cache);
+  if (!lifted) out = contactsAt(a, X_WA, b, X_WB, options.margin, dial, options.fillPatch, cache);
   contact::mergeDuplicates(out, 4 * tol);
   if (cache) {
     // The next step lifts along this step's deepest normal (kept in B's frame: a ball rolling on a floor turns,

@@ -52,10 +52,27 @@ DistanceResult genericPair(const PosedModel& a, const PosedModel& b, const Query
   const int onceNegative = solidA && solidB ? kSeedBudget : kSurfaceBudget;
   // A separation test for the depth search only needs a sign: an exhausted budget just counts as "not proved".
   const int budget = ctx.overlapVerdictOnly ? kVerdictBudget : kSurfaceBudget;
-  if (solidB || !solidA)
-    searches.push_back({minimizeFieldOverSurface(a, b, fieldValue(b, best.onA), best.onA, 0.5 * tol, budget, onceNegative), true});
-  if (solidA || !solidB)
-    searches.push_back({minimizeFieldOverSurface(b, a, fieldValue(a, best.onB), best.onB, 0.5 * tol, budget, onceNegative), false});
+  auto searchSurfaceOf = [&](bool ofA, int surfaceBudget) {
+    const PosedModel& surface = ofA ? a : b;
+    const PosedModel& field = ofA ? b : a;
+    const Eigen::Vector3d& hint = ofA ? best.onA : best.onB;
+    searches.push_back(
+        {minimizeFieldOverSurface(surface, field, fieldValue(field, hint), hint, 0.5 * tol, surfaceBudget, onceNegative),
+         ofA});
+  };
+  //    Once one search has proved two solids overlap, the other only seeds the depth search (a verdict needs
+  //    nothing more): it gets the seed budget. A contained model is the smaller one and its surface proves the
+  //    overlap at once, so the smaller solid's surface goes first; the other surface never reaches a negative
+  //    value and would spend the whole budget (400,000 point queries: 25 s for a NURBS box around a NURBS ball).
+  bool order[2] = {true, false};  // search A's surface first
+  if (solidA && solidB && b.model.localBoundingSphere().radius < a.model.localBoundingSphere().radius)
+    std::swap(order[0], order[1]);
+  for (const bool ofA : order) {
+    if (!(ofA ? (solidB || !solidA) : (solidA || !solidB))) continue;
+    const bool overlapProved = solidA && solidB && !searches.empty() && searches.front().search.value < 0;
+    if (overlapProved && ctx.overlapVerdictOnly) return overlapVerdict();
+    searchSurfaceOf(ofA, overlapProved ? kSeedBudget : budget);
+  }
   for (const DeepestPoint& s : searches) iterations += s.search.evaluations;
 
   // Every search's lower bound bounds the same minimum (when separated, or for models without an inside).

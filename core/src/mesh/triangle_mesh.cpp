@@ -453,6 +453,15 @@ std::string TriangleMesh::describe() const {
   return s;
 }
 
+std::vector<StructureReport> TriangleMesh::structures() const {
+  const mesh::MeshBvh* b = bvhReady_.load(std::memory_order_acquire);
+  const mesh::WindingData* w = windingReady_.load(std::memory_order_acquire);
+  return {{"bvh", b != nullptr, b ? sizeof(*b) + b->memoryBytes() : 0},
+          {"winding", w != nullptr, w ? sizeof(*w) + w->memoryBytes() : 0}};
+}
+
+void TriangleMesh::buildStructures() const { winding(); }  // the winding data is built over the hierarchy
+
 std::size_t TriangleMesh::memoryBytes() const {
   std::size_t bytes = sizeof(*this) + vertices_.capacity() * sizeof(Eigen::Vector3d) +
                       triangles_.capacity() * sizeof(Triangle) + source_.capacity() * sizeof(std::uint32_t) +

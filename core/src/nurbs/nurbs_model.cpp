@@ -191,6 +191,10 @@ std::string NurbsModel::describe() const {
   return buf;
 }
 
+std::vector<StructureReport> NurbsModel::structures() const {
+  return {{"patch-tree", true, forest_->bytes.load() + forest_->roots.size() * sizeof(nurbs::PatchNode)}};
+}
+
 std::size_t NurbsModel::memoryBytes() const {
   std::size_t bytes = sizeof(*this) + forest_->bytes.load() + forest_->roots.size() * sizeof(nurbs::PatchNode);
   for (const NurbsSurface& s : surfaces_)

@@ -441,9 +441,14 @@ DistanceResult meshMesh(const PosedModel& a, const PosedModel& b, const QueryCon
   Best best;
   TrianglePairs leaf(ma, mb, ha, hb, X_AB);
   const Side sideA{&ha.tree, &ha.spheres, &ha.rss(va, ta)}, sideB{&hb.tree, &hb.spheres, &hb.rss(vb, tb)};
-  const Traversal tr = traverse(sideA, sideB, X_AB, pruneOf(ctx, scale), budgetOf(ctx), best, leaf);
+  Traversal tr = traverse(sideA, sideB, X_AB, pruneOf(ctx, scale), budgetOf(ctx), best, leaf);
 
   const bool solidA = ma.isSolid(), solidB = mb.isSolid();
+  if ((solidA || solidB) && best.distance > 0 && !(tr.lowerBound > 0) && !tr.exhausted) {
+    // Closer than the pruning allowance: the pairs pruned may cross, and one vertex's containment cannot tell
+    // crossing surfaces from apart ones. Apart must be proved (a positive lower bound) first: search exactly.
+    tr = traverse(sideA, sideB, X_AB, 0.0, budgetOf(ctx), best, leaf);
+  }
   if (solidA || solidB) {
     if (best.distance <= 0) return overlap(a, b, ctx, true, overlapFn);
     // Apart surfaces: overlap only by containment (of a whole component when the other is open).
@@ -452,7 +457,12 @@ DistanceResult meshMesh(const PosedModel& a, const PosedModel& b, const QueryCon
     if (solidB && (solidA ? mb.inside(X_BA * va[0]) : solidContainsAny(mb, va, X_BA))) return overlap(a, b, ctx, false, overlapFn);
   }
   const Eigen::Vector3d zeroNormal = best.triA >= 0 ? ma.faceNormal(best.triA) : Eigen::Vector3d::UnitZ();
-  return finish(a, best, tr, scale, ctx, zeroNormal, "mesh-mesh-bvh");
+  DistanceResult r = finish(a, best, tr, scale, ctx, zeroNormal, "mesh-mesh-bvh");
+  if ((solidA || solidB) && !(tr.lowerBound > 0) && r.distance > 0) {  // the budget ran out before apart was proved
+    r.lowerBound = -std::numeric_limits<double>::infinity();
+    r.status = Status::Bounded;
+  }
+  return r;
 }
 
 DistanceResult meshCloud(const PosedModel& a, const PosedModel& b, const QueryContext& ctx) {

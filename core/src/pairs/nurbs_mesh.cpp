@@ -244,18 +244,18 @@ DistanceResult nurbsMesh(const PosedModel& a, const PosedModel& b, const QueryCo
   const auto& mb = static_cast<const TriangleMesh&>(b.model);
   const Eigen::Isometry3d X_AB = a.X_WM.inverse() * b.X_WM;
   NurbsMeshSearch search(ma, mb, X_AB, ctx.tolerance, ctx.overlapVerdictOnly);
+  // A point of either model inside the other proves the overlap: the surface search is spared (see insideSolid).
+  const Eigen::Vector3d cornerA = ma.forest().roots.front()->corners[0];
+  if (insideSolid(mb, X_AB.inverse() * cornerA) || insideSolid(ma, search.vertex(0)))
+    return ctx.overlapVerdictOnly ? overlapVerdict() : genericPair(a, b, ctx);
   const Outcome outcome = search.run();
   const bool anInside = ma.isSolid() || mb.isSolid();
   if (outcome == Outcome::Touching) {
     if (!anInside) return touchingOpenSurfaces(a, search, ctx.tolerance);
     return ctx.overlapVerdictOnly ? notProvedApart(search.best()) : genericPair(a, b, ctx);
   }
-  // Apart surfaces overlap only by containment: a point of either surface inside the other solid.
+  // Apart surfaces overlap only by containment, ruled out above.
   const bool surfacesApart = search.lower() > 0;
-  const Eigen::Vector3d cornerA = ma.forest().roots.front()->corners[0];
-  const bool contained = surfacesApart && ((mb.isSolid() && mb.inside(X_AB.inverse() * cornerA)) ||
-                                           (ma.isSolid() && ma.inside(search.vertex(0))));
-  if (contained) return ctx.overlapVerdictOnly ? overlapVerdict() : genericPair(a, b, ctx);
   if (!surfacesApart && !ctx.overlapVerdictOnly) return genericPair(a, b, ctx);  // exhausted, unresolved
   return separationFromPoints(a, search.pointA(), search.pointB(), Eigen::Vector3d::UnitZ(), search.lower(),
                               search.iterations(), "nurbs-mesh-cones-gjk", ctx.tolerance);

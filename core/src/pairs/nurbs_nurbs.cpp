@@ -204,17 +204,18 @@ DistanceResult nurbsNurbs(const PosedModel& a, const PosedModel& b, const QueryC
   const auto& ma = static_cast<const NurbsModel&>(a.model);
   const auto& mb = static_cast<const NurbsModel&>(b.model);
   const Eigen::Isometry3d X_AB = a.X_WM.inverse() * b.X_WM;
-  PairSearch search(ma, mb, X_AB, ctx.tolerance, ctx.overlapVerdictOnly);
-  const Outcome outcome = search.run();
-  // Apart surfaces overlap only by containment: a point of either surface inside the other solid. An
-  // exhausted search whose lower bound is still positive has proved the surfaces apart too.
+  // A point of either model inside the other proves the overlap (apart surfaces overlap only so): the surface
+  // search is spared (see insideSolid).
   const auto& cornerA = ma.forest().roots.front()->corners[0];
   const auto& cornerB = mb.forest().roots.front()->corners[0];
+  if (insideSolid(mb, X_AB.inverse() * cornerA) || insideSolid(ma, X_AB * cornerB))
+    return ctx.overlapVerdictOnly ? overlapVerdict() : genericPair(a, b, ctx);
+  PairSearch search(ma, mb, X_AB, ctx.tolerance, ctx.overlapVerdictOnly);
+  const Outcome outcome = search.run();
+  // An exhausted search whose lower bound is still positive has proved the surfaces apart too.
   const bool surfacesApart = outcome != Outcome::Touching && search.lower() > 0;
-  const bool contained = surfacesApart && (mb.inside(X_AB.inverse() * cornerA) || ma.inside(X_AB * cornerB));
-  if (ctx.overlapVerdictOnly && contained) return overlapVerdict();
   if (ctx.overlapVerdictOnly && outcome == Outcome::Touching) return notProvedApart(search.best());
-  if (!surfacesApart || contained) return genericPair(a, b, ctx);
+  if (!surfacesApart) return genericPair(a, b, ctx);
 
   DistanceResult r;
   r.method = "nurbs-nurbs-cones-newton";

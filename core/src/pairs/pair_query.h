@@ -58,6 +58,13 @@ inline DistanceResult notProvedApart(double gap) {
 
 using PairFn = DistanceResult (*)(const PosedModel& a, const PosedModel& b, const QueryContext& ctx);
 
+/// Whether p (model frame) lies inside the solid m; a point outside its bounding box needs no point query. The
+/// NURBS pair searches test containment first with it: a contained model proves the overlap, and their surface
+/// searches would only spend their budgets (on concentric models every subpatch stays a candidate).
+inline bool insideSolid(const Model& m, const Eigen::Vector3d& p_M) {
+  return m.isSolid() && m.localBounds().distanceTo(p_M) == 0 && m.inside(p_M);
+}
+
 /// The same answer seen with A and B exchanged: points swap, the normal flips, the distance is symmetric.
 inline DistanceResult swapped(DistanceResult r) {
   std::swap(r.pointA, r.pointB);

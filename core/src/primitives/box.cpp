@@ -138,6 +138,11 @@ const TriangleMesh& Box::asMesh() const {
   return *lazyMesh_.mesh;
 }
 
+std::vector<StructureReport> Box::structures() const {
+  const TriangleMesh* m = lazyMesh_.ready.load(std::memory_order_acquire);
+  return {{"contact-mesh", m != nullptr, m ? m->memoryBytes() : 0}};
+}
+
 std::size_t Box::memoryBytes() const {
   const TriangleMesh* m = lazyMesh_.ready.load(std::memory_order_acquire);
   return sizeof(*this) + (m ? m->memoryBytes() : 0);

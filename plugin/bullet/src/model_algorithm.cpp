@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <exception>
 #include <limits>
 #include <utility>
 
@@ -61,7 +62,7 @@ double speculativeDistance(const btCollisionObjectWrapper* a, const ModelShapeDa
     const Eigen::Vector3d lin = toEigen(body->getLinearVelocity());
     v += (w == a) ? lin : Eigen::Vector3d(-lin);
     const double spin = toEigen(body->getAngularVelocity()).norm();
-    if (spin > 0) speed += spin * reach(*w->getCollisionShape(), data);
+    if (spin != 0) speed += spin * reach(*w->getCollisionShape(), data);  // != 0: a NaN spin must show
   }
   return (v.norm() + speed) * dt;
 }
@@ -74,11 +75,11 @@ void forgetLift(ContactCache& cache) {
   cache.valid = false;
 }
 
+bool finitePose(const btCollisionObjectWrapper& w) { return toEigen(w.getWorldTransform()).matrix().allFinite(); }
+
 /// b: the other shape's unidist data, null for Bullet's shapes.
-double pairTolerance(const ModelShapeData& a, const ModelShapeData* b) {
-  const double ta = a.tolerance(), tb = b ? b->tolerance() : -1;
-  if (ta >= 0 && tb >= 0) return std::min(ta, tb);
-  return ta >= 0 ? ta : tb;
+QueryOptions pairDial(const ModelShapeData& a, const ModelShapeData* b) {
+  return b ? stricter(a.queryOptions(), b->queryOptions()) : a.queryOptions();
 }
 
 }  // namespace
@@ -126,6 +127,27 @@ Eigen::Vector3d regionCentre(const std::vector<Contact>& region) {
 
 void ModelAlgorithm::processCollision(const btCollisionObjectWrapper* w0, const btCollisionObjectWrapper* w1,
                                       const btDispatcherInfo& info, btManifoldResult* result) {
+  // An exception unwinding through Bullet's dispatch would leave the world half-stepped: the pair is skipped.
+  try {
+    collide(w0, w1, info, result);
+  } catch (const std::exception& e) {
+    skipPair(e.what());
+  } catch (...) {
+    skipPair("unknown exception");
+  }
+}
+
+void ModelAlgorithm::skipPair(const std::string& why) {
+  state_->cache.reset();
+  if (ownManifold_) {
+    manifold_->setContactBreakingThreshold(baseThreshold_);
+    clearOwnManifolds();
+  }
+  registration_->noteSkip("unidist Bullet algorithm: pair skipped: " + why);
+}
+
+void ModelAlgorithm::collide(const btCollisionObjectWrapper* w0, const btCollisionObjectWrapper* w1,
+                             const btDispatcherInfo& info, btManifoldResult* result) {
   const btCollisionObjectWrapper* a = swapped_ ? w1 : w0;  // the unidist shape
   const btCollisionObjectWrapper* b = swapped_ ? w0 : w1;
   const ModelShapeData* da = shapeData(a->getCollisionShape());
@@ -142,15 +164,19 @@ void ModelAlgorithm::processCollision(const btCollisionObjectWrapper* w0, const 
 
   result->setPersistentManifold(manifold_);  // before any addContactPoint (closest-point queries need it too)
   const double speculative = speculativeDistance(a, da, b, db, double(info.m_timeStep));
+  if (!std::isfinite(speculative) || !finitePose(*a) || !finitePose(*b)) {  // a body blew up: its motion means nothing
+    skipPair("non-finite pose or velocity");
+    return;
+  }
   double threshold = double(manifold_->getContactBreakingThreshold());
   if (ownManifold_) {
     threshold = double(baseThreshold_) + speculative;
     manifold_->setContactBreakingThreshold(btScalar(threshold));
   }
   ManifoldOptions options;
+  static_cast<QueryOptions&>(options) = pairDial(*da, db);
   options.margin = threshold + double(result->m_closestPointDistanceThreshold) + other.outerMargin;
   options.maxContacts = ownManifold_ ? 4 * kMaxRegions : 4;
-  options.tolerance = pairTolerance(*da, db);
   if (aabbGap(*a, *b) > options.margin) {  // most pairs the broadphase hands over: proved apart, no query
     forgetLift(state_->cache);
     if (ownManifold_) clearOwnManifolds();

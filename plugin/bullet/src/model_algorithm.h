@@ -8,6 +8,7 @@
 #include <BulletCollision/CollisionDispatch/btActivatingCollisionAlgorithm.h>
 
 #include <memory>
+#include <string>
 
 namespace unidist::bullet {
 
@@ -42,6 +43,11 @@ class ModelAlgorithm final : public btActivatingCollisionAlgorithm {
   };
 
  private:
+  /// processCollision's work; it may throw (processCollision catches: nothing may unwind through Bullet).
+  void collide(const btCollisionObjectWrapper* w0, const btCollisionObjectWrapper* w1, const btDispatcherInfo& info,
+               btManifoldResult* result);
+  /// No contacts for this pair this step, counted in stats().skippedPairs.
+  void skipPair(const std::string& why);
   /// Empties the own manifold and the extra ones (a pair with no contacts this step leaves no ghost points).
   void clearOwnManifolds();
 

@@ -74,8 +74,16 @@ std::unique_ptr<Registration> registerAlgorithms(btCollisionDispatcher* dispatch
 
 void unregisterAlgorithms(Registration& registration) { registration.impl().restoreDefaults(); }
 
+void Registration::Impl::noteSkip(const std::string& why) {
+  ++skippedPairs;
+  std::lock_guard<std::mutex> lock(errorMutex);
+  lastError = why;
+}
+
 PluginStats stats(const Registration& registration) {
-  return PluginStats{registration.impl().globalSearches.load(), registration.impl().localUpdates.load()};
+  const Registration::Impl& r = registration.impl();
+  std::lock_guard<std::mutex> lock(r.errorMutex);
+  return PluginStats{r.globalSearches.load(), r.localUpdates.load(), r.skippedPairs.load(), r.lastError};
 }
 
 }  // namespace unidist::bullet

@@ -6,6 +6,7 @@
 
 #include <atomic>
 #include <mutex>
+#include <string>
 #include <unordered_map>
 #include <vector>
 
@@ -36,6 +37,11 @@ struct Registration::Impl {
   std::unique_ptr<btCollisionAlgorithmCreateFunc> forward, reverse;
   ShapeModelCache shapeCache;
   std::atomic<long> globalSearches{0}, localUpdates{0};
+  /// A pair skipped for one step (see PluginStats).
+  void noteSkip(const std::string& why);
+  std::atomic<long> skippedPairs{0};
+  mutable std::mutex errorMutex;
+  std::string lastError;  // guarded by errorMutex
 };
 
 }  // namespace unidist::bullet

@@ -26,6 +26,9 @@ ModelShapeData::ModelShapeData(std::shared_ptr<const Model> model, const ShapeOp
                      ") cannot be a shape; use btStaticPlaneShape");
   if (std::isnan(options.tolerance) || std::isinf(options.tolerance))
     throw InputError("unidist Bullet shape: tolerance must be finite");
+  if (!std::isfinite(options.relativeTolerance) || options.relativeTolerance < 0)
+    throw InputError("unidist Bullet shape: relative tolerance must be finite and >= 0");
+  if (options.maxIterations < 1) throw InputError("unidist Bullet shape: maxIterations must be >= 1");
 }
 
 Eigen::Vector3d ModelShapeData::inertiaDiagonal(double mass) const {

@@ -13,6 +13,17 @@
 namespace unidist::ode::detail {
 namespace {
 
+/// A body's velocities are finite (true for a geom without a body).
+bool finiteVelocity(dGeomID g) {
+  const dBodyID b = dGeomGetBody(g);
+  if (!b) return true;
+  const dReal* v = dBodyGetLinearVel(b);
+  const dReal* w = dBodyGetAngularVel(b);
+  for (int i = 0; i < 3; ++i)
+    if (!std::isfinite(v[i]) || !std::isfinite(w[i])) return false;
+  return true;
+}
+
 dContactGeom* slot(dContactGeom* contacts, int i, int skip) {
   return reinterpret_cast<dContactGeom*>(reinterpret_cast<char*>(contacts) + static_cast<std::ptrdiff_t>(i) * skip);
 }
@@ -23,16 +34,12 @@ void put(dReal* out, const Eigen::Vector3d& v) {
   out[2] = v.z();
 }
 
-/// Query accuracy of a pair: the smaller explicit setting, else the default (negative: ManifoldOptions decides).
-double pairTolerance(const GeomRecord& a, const GeomRecord* b) {
-  const double tb = b ? b->tolerance : -1;
-  if (a.tolerance > 0 && tb > 0) return std::min(a.tolerance, tb);
-  return a.tolerance > 0 ? a.tolerance : tb;
-}
+/// The dial of a pair: the stricter of the two geoms' (a negative tolerance: ManifoldOptions' default).
+QueryOptions pairDial(const GeomRecord& a, const GeomRecord* b) { return b ? stricter(a.query, b->query) : a.query; }
 
 /// Default ray accuracy: 1e-4 × the model's bounding diagonal (1e-9 for an unbounded model).
 double rayTolerance(const GeomRecord& a) {
-  if (a.tolerance > 0) return a.tolerance;
+  if (a.query.tolerance > 0) return a.query.tolerance;
   const Aabb box = a.model->localBounds();
   return box.bounded() && box.diagonal() > 0 ? 1e-4 * box.diagonal() : 1e-9;
 }
@@ -89,8 +96,8 @@ int modelContacts(dGeomID o1, const GeomRecord& a, dGeomID o2, int maxc, dContac
   const Eigen::Isometry3d X_WA = odeGeomPose(o1), X_WB = odeGeomPose(o2);
 
   ManifoldOptions options;
+  static_cast<QueryOptions&>(options) = pairDial(a, b);
   options.maxContacts = maxc;
-  options.tolerance = pairTolerance(a, b);
   ContactCache& cache = pairCache(o1, o2, otherClass, modelB->localBounds(), version);
   const std::vector<Contact> found = manifoldContacts(*a.model, X_WA, *modelB, X_WB, options, &cache);
 
@@ -118,6 +125,10 @@ int collide(dGeomID o1, dGeomID o2, int flags, dContactGeom* contacts, int skip)
   try {
     const GeomRecord* a = record(o1);
     if (!a || !a->model) return 0;  // not ours (cannot happen through ODE's table) or already destroyed
+    if (!finiteVelocity(o1) || !finiteVelocity(o2)) {  // a contact would hand ODE's solver the NaN: skip the pair
+      reportError("collider: non-finite body velocity; pair skipped");
+      return 0;
+    }
     if (dGeomGetClass(o2) == dRayClass) return rayContact(o1, *a, o2, contacts);
     if (const GeomRecord* b = record(o2); a->pieces && b && b->pieces)
       return convexUnionContacts(o1, *a, o2, *b, maxc, contacts);

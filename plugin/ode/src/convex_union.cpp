@@ -50,11 +50,8 @@ int convexUnionContacts(dGeomID o1, const GeomRecord& a, dGeomID o2, const GeomR
   if (maxc < 1) return 0;
   raster::UnionDistanceOptions options;
   options.resolution = std::max(a.pieces->resolution, b.pieces->resolution);
-  const double ta = a.tolerance, tb = b.tolerance;
-  options.tolerance = (ta > 0 && tb > 0) ? std::min(ta, tb)
-                      : ta > 0           ? ta
-                      : tb > 0           ? tb
-                                         : 1e-4 * std::min(a.pieces->diagonal, b.pieces->diagonal);
+  const double tolerance = stricter(a.query, b.query).tolerance;
+  options.tolerance = tolerance > 0 ? tolerance : 1e-4 * std::min(a.pieces->diagonal, b.pieces->diagonal);
   DistanceResult r;
   {
     RasterState& s = rasterState();

@@ -7,6 +7,8 @@
 #include <ode/ode.h>
 
 #include <cstdint>
+#include "unidist/query_options.h"
+
 #include <memory>
 #include <string>
 #include <utility>
@@ -19,7 +21,7 @@ struct ConvexPieces;
 /// What a unidist geom owns (ODE's class data holds only a pointer to it: raw zeroed memory, no constructors).
 struct GeomRecord {
   std::shared_ptr<const Model> model;
-  double tolerance = -1;
+  QueryOptions query;  ///< the geom's dial (setQueryOptions / setTolerance); tolerance -1: the default
   std::shared_ptr<const ConvexPieces> pieces;  ///< set for convex-union geoms only
 };
 

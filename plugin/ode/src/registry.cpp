@@ -71,6 +71,12 @@ void computeAabb(dGeomID g, dReal aabb[6]) {
     return;
   }
   const Aabb world = local.transformed(odeGeomPose(g));
+  if (!world.min.allFinite() || !world.max.allFinite()) {
+    // A non-finite pose (a body that blew up): NaN bounds make ODE's hash space abort ("aabbBound" check in
+    // collision_space.cpp). Everywhere instead: the collider is asked about every pair and skips them.
+    for (int i = 0; i < 3; ++i) aabb[2 * i] = -dInfinity, aabb[2 * i + 1] = dInfinity;
+    return;
+  }
   for (int i = 0; i < 3; ++i) aabb[2 * i] = world.min[i], aabb[2 * i + 1] = world.max[i];
 }
 
@@ -146,7 +152,7 @@ dGeomID createGeom(dSpaceID space, std::shared_ptr<const Model> model) {
   const int c = geomClass();
   if (c < 0) throw std::logic_error("unidist::ode::createGeom: call unidist::ode::init() after dInitODE2 first");
   dGeomID g = dCreateGeom(c);
-  *static_cast<detail::GeomRecord**>(dGeomGetClassData(g)) = new detail::GeomRecord{std::move(model), -1, nullptr};
+  *static_cast<detail::GeomRecord**>(dGeomGetClassData(g)) = new detail::GeomRecord{std::move(model), {}, nullptr};
   if (space) dSpaceAdd(space, g);
   return g;
 }
@@ -161,13 +167,26 @@ void setTolerance(dGeomID g, double tolerance) {
   if (!r) throw InputError("unidist::ode::setTolerance: not a unidist geom");
   if (std::isnan(tolerance) || std::isinf(tolerance) || tolerance == 0)
     throw InputError("unidist::ode::setTolerance: tolerance must be finite and > 0 (or < 0 for the default)");
-  r->tolerance = tolerance < 0 ? -1 : tolerance;
+  r->query.tolerance = tolerance < 0 ? -1 : tolerance;
 }
 
-double tolerance(dGeomID g) {
+double tolerance(dGeomID g) { return queryOptions(g).tolerance; }
+
+void setQueryOptions(dGeomID g, const QueryOptions& options) {
+  detail::GeomRecord* r = detail::record(g);
+  if (!r) throw InputError("unidist::ode::setQueryOptions: not a unidist geom");
+  if (!std::isfinite(options.relativeTolerance) || options.relativeTolerance < 0)
+    throw InputError("unidist::ode::setQueryOptions: relative tolerance must be finite and >= 0");
+  if (options.maxIterations < 1) throw InputError("unidist::ode::setQueryOptions: maxIterations must be >= 1");
+  setTolerance(g, options.tolerance);  // its checks and its "negative: the default"
+  r->query.relativeTolerance = options.relativeTolerance;
+  r->query.maxIterations = options.maxIterations;
+}
+
+QueryOptions queryOptions(dGeomID g) {
   const detail::GeomRecord* r = detail::record(g);
-  if (!r) throw InputError("unidist::ode::tolerance: not a unidist geom");
-  return r->tolerance;
+  if (!r) throw InputError("unidist::ode: not a unidist geom");
+  return r->query;
 }
 
 std::string lastError() {

@@ -10,6 +10,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <mutex>
 #include <vector>
 
 namespace unidist::ode {
@@ -166,10 +167,25 @@ double smallestDynamicDiagonal(const Scene& scene) {
 /// Owns the ODE objects of one run; destroys them (and closes this run's ODE initialisation) on every exit path.
 struct OdeRun {
   World w;
+  dThreadingImplementationID threading = nullptr;
+  /// ODE counts dInitODE2/dCloseODE in a plain integer: runs in several threads must not race on it (a lost
+  /// decrement would close ODE under another thread's world).
+  static std::mutex& initMutex() {
+    static std::mutex m;
+    return m;
+  }
   OdeRun() {
-    dInitODE2(0);
-    init();
+    {
+      std::lock_guard<std::mutex> lock(initMutex());
+      dInitODE2(0);
+      dAllocateODEDataForThread(dAllocateMaskAll);  // this thread's collision data (ODE builds with TLS need it)
+      init();
+    }
     w.world = dWorldCreate();
+    // The world's own stepping threading: without one, every world of the process shares ODE's default
+    // implementation, and worlds stepped in parallel threads corrupt its job list (ODE INTERNAL ERROR, abort).
+    threading = dThreadingAllocateSelfThreadedImplementation();
+    dWorldSetStepThreadingImplementation(w.world, dThreadingImplementationGetFunctions(threading), threading);
     w.space = dHashSpaceCreate(nullptr);
     w.contactGroup = dJointGroupCreate(0);
   }
@@ -177,6 +193,8 @@ struct OdeRun {
     dJointGroupDestroy(w.contactGroup);
     dSpaceDestroy(w.space);  // destroys the geoms it holds (cleanup mode on)
     dWorldDestroy(w.world);  // destroys the bodies
+    dThreadingFreeImplementation(threading);
+    std::lock_guard<std::mutex> lock(initMutex());
     dCloseODE();
   }
   OdeRun(const OdeRun&) = delete;

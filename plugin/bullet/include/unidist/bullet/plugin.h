@@ -19,6 +19,7 @@
 #include <btBulletCollisionCommon.h>
 
 #include <memory>
+#include <string>
 
 namespace unidist::bullet {
 
@@ -50,10 +51,13 @@ std::unique_ptr<Registration> registerAlgorithms(btCollisionDispatcher* dispatch
 void unregisterAlgorithms(Registration& registration);
 
 /// Counters for tests and benchmarks: how many global contact searches and warm-start local updates the
-/// registration's algorithms have run.
+/// registration's algorithms have run, and how many times a pair was skipped for one step — no contacts, nothing
+/// thrown through Bullet — because a pose or velocity was not finite or its query failed (lastError says why).
 struct PluginStats {
   long globalSearches = 0;
   long localUpdates = 0;
+  long skippedPairs = 0;
+  std::string lastError;
 };
 PluginStats stats(const Registration& registration);
 

@@ -9,6 +9,7 @@
 #pragma once
 
 #include "unidist/model.h"
+#include "unidist/query_options.h"
 
 #include <btBulletCollisionCommon.h>
 
@@ -17,17 +18,16 @@
 
 namespace unidist::bullet {
 
-struct ShapeOptions {
-  /// Absolute accuracy of this shape's contact queries; < 0: 1e-4 × the smaller bounding diagonal of a pair.
-  double tolerance = -1;
-};
+/// The dial of this shape's contact queries (unidist/query_options.h); a pair uses the stricter of its two
+/// shapes' dials. tolerance < 0: 1e-4 × the smaller bounding diagonal of the pair.
+struct ShapeOptions : QueryOptions {};
 
 /// What both shape classes carry.
 class ModelShapeData {
  public:
   ModelShapeData(std::shared_ptr<const Model> model, const ShapeOptions& options);
   const std::shared_ptr<const Model>& model() const { return model_; }
-  double tolerance() const { return options_.tolerance; }
+  const QueryOptions& queryOptions() const { return options_; }
   /// Diagonal of the unit-density inertia about the centre of mass, in model axes, scaled to `mass` (zero for a
   /// model without a finite volume). Computed once, on first use.
   Eigen::Vector3d inertiaDiagonal(double mass) const;

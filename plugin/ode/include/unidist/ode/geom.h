@@ -32,7 +32,8 @@
 // reset when the other geom's class or bounds change (an ODE geom destroyed and its address reused).
 //
 // Tolerance: the absolute accuracy of a pair's queries is the smaller of the two geoms' setTolerance values; by
-// default 1e-4 × the smaller bounding-box diagonal of the pair (unidist::ManifoldOptions).
+// default 1e-4 × the smaller bounding-box diagonal of the pair (unidist::ManifoldOptions). setQueryOptions sets
+// the whole dial (relative tolerance, iteration cap); a pair uses the stricter of the two.
 //
 // AABB: the model's local bounds moved by the geom's current pose (a half-space model: infinite). The model
 // is immutable, so dGeomMoved is only needed when the pose is changed by other means than ODE's own setters.
@@ -43,6 +44,7 @@
 #pragma once
 
 #include "unidist/model.h"
+#include "unidist/query_options.h"
 
 #include <ode/ode.h>
 
@@ -69,6 +71,12 @@ std::shared_ptr<const Model> geomModel(dGeomID g);
 void setTolerance(dGeomID g, double tolerance);
 /// The value set by setTolerance, or -1 (the default).
 double tolerance(dGeomID g);
+
+/// The whole dial of this geom's queries (unidist/query_options.h); a pair uses the stricter of its two geoms'
+/// dials. The tolerance follows setTolerance's rules. Throws InputError for a geom that is not a unidist geom or
+/// an invalid setting.
+void setQueryOptions(dGeomID g, const QueryOptions& options);
+QueryOptions queryOptions(dGeomID g);
 
 /// The last error a collider reported (empty when none).
 std::string lastError();

@@ -13,8 +13,8 @@
 //  * surface layer: 1e-4 × the smallest dynamic body's bounding-box diagonal (resting bodies sink by this much);
 //  * stepper: dWorldStep (the exact LCP solve; stacks of mixed bodies stay standing, docs/ode.md compares it
 //    with dWorldQuickStep).
-// The runner calls dInitODE2 / dCloseODE around the run (ODE counts nested initialisations) and
-// unidist::ode::init(). Result: model-frame poses, centre-of-mass velocities, the deepest contact seen, the
+// The runner calls dInitODE2 / dCloseODE around the run (ODE counts nested initialisations; the runner serialises
+// its own calls, so runs in several threads at once are safe, one world each) and unidist::ode::init(). Result: model-frame poses, centre-of-mass velocities, the deepest contact seen, the
 // contact count of the last step and wall-clock steps per second (collision + solver).
 #pragma once
 

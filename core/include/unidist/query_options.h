@@ -1,0 +1,33 @@
+// The speed/accuracy dial every query takes: distance() (DistanceOptions), contacts() (ContactOptions),
+// manifoldContacts() (ManifoldOptions) and both engine plugins derive their options from QueryOptions, so one
+// setting means the same thing everywhere. docs/dial.md measures what each setting costs and gives.
+#pragma once
+
+namespace unidist {
+
+struct QueryOptions {
+  /// Absolute accuracy (unit: model length): the answer is within the larger of `tolerance` and
+  /// `relativeTolerance` × |true distance| of the truth. Negative (the default) → the query's default (1e-9 × the
+  /// larger posed bounding-box diagonal for distance() and contacts(), 1e-4 × the smaller one for the simulation
+  /// contacts of manifoldContacts() and the plugins); 0 → as exact as double precision allows.
+  double tolerance = -1;
+  /// Accuracy relative to the distance (>= 0; 0 = off): far pairs may be answered more coarsely. Used only where
+  /// a proved lower bound on |distance| (the bounding spheres' gap) allows it, so the guarantee always holds.
+  double relativeTolerance = 0;
+  /// Cap on the work of iterative methods (GJK/EPA iterations, alternating steps, branch-and-bound rounds); the
+  /// answer reports honest bounds (status Bounded) when the cap stops it.
+  int maxIterations = 100000;
+};
+
+/// The stricter of two dials, for a pair whose models carry their own (the engine plugins): the smaller explicit
+/// tolerance (a negative one defers to the other), the smaller relative tolerance, the larger iteration cap.
+inline QueryOptions stricter(const QueryOptions& a, const QueryOptions& b) {
+  QueryOptions s;
+  s.tolerance = (a.tolerance >= 0 && b.tolerance >= 0) ? (a.tolerance < b.tolerance ? a.tolerance : b.tolerance)
+                                                       : (a.tolerance >= 0 ? a.tolerance : b.tolerance);
+  s.relativeTolerance = a.relativeTolerance < b.relativeTolerance ? a.relativeTolerance : b.relativeTolerance;
+  s.maxIterations = a.maxIterations > b.maxIterations ? a.maxIterations : b.maxIterations;
+  return s;
+}
+
+}  // namespace unidist

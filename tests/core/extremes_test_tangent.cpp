@@ -1,0 +1,120 @@
+// Tangent configurations of NURBS, where Newton's method is singular: a point at a centre of curvature (the
+// centre of a NURBS sphere, where every surface point is closest) and a plane tangent to a NURBS surface (the
+// distance is flat to second order there), at a generic point of the sphere and at its pole (a collapsed patch
+// edge, where the parametrisation is singular too). Truth is analytic.
+#include "core/extremes_families.h"
+
+namespace extremes {
+namespace {
+
+constexpr double kR = 0.5;
+
+/// The NURBS sphere's pole is its local +z; a generic point is anywhere else.
+Pose sphereRotation(bool poleDown, std::mt19937_64& rng) {
+  return poleDown ? rotation(Vec::UnitX(), M_PI) : randomRotation(rng);
+}
+
+/// A sheet (or half-space) at a random pose, and the NURBS sphere resting on it at `gap` above its centre.
+Case sphereOnSheet(const Body& sheetBody, double gap, bool atPole, std::mt19937_64& rng) {
+  const Body sphere = ball(Family::Nurbs, kR);
+  Pose XS = randomRotation(rng);
+  XS.translation() = randomUnit(rng);
+  Pose XB = XS * sphereRotation(atPole, rng);
+  XB.translation() = XS * Vec(0.02, -0.03, kR + gap);  // over a point inside the sheet (no vertex of a tessellation)
+  Case c = makeCase("tangent", sheetBody, XS, sphere, XB, exactly(gap));
+  c.what += std::string(atPole ? " at the pole" : " at a generic point") + ", gap " + sci(gap);
+  if (gap < 1e-8) c.options.tolerance = 1e-12;
+  return c;
+}
+
+/// A model of family f centred at the centre of the NURBS sphere (every point of the sphere closest to it).
+Case atTheCentre(const Body& inner, std::mt19937_64& rng) {
+  const Body sphere = ball(Family::Nurbs, kR);
+  Pose X = randomRotation(rng);
+  X.translation() = randomUnit(rng);
+  const Pose XB = X * randomRotation(rng);
+  const std::optional<double> truth = signedDistanceOracle(inner, XB, sphere, X);
+  EXPECT_TRUE(truth.has_value());
+  Case c = makeCase("tangent", inner, XB, sphere, X, exactly(truth.value_or(0)));
+  c.what += " at the centre of curvature";
+  return c;
+}
+
+TEST(Tangent, PrimitivesAtTheCentreAndTangentPlane) {
+  std::mt19937_64 rng(41);
+  runCase(atTheCentre(ball(Family::Prim, 0.1), rng));
+  for (bool pole : {false, true})
+    for (double gap : {0.0, 1e-9, 1e-3}) runCase(sphereOnSheet(sheet(Family::Prim, 0), gap, pole, rng));
+}
+
+TEST(Tangent, MeshesAtTheCentreAndTangentSheet) {
+  std::mt19937_64 rng(42);
+  runCase(atTheCentre(ball(Family::Mesh, 0.1), rng));
+  runCase(sphereOnSheet(sheet(Family::Mesh, 0.4), 0.0, false, rng));
+  runCase(sphereOnSheet(sheet(Family::Mesh, 0.4), 1e-9, false, rng));
+  runCase(sphereOnSheet(sheet(Family::Mesh, 0.4), 1e-9, true, rng));  // touching at the pole: TouchingAtThePole
+}
+
+TEST(Tangent, CloudsAtTheCentreAndTangentGrid) {
+  std::mt19937_64 rng(43);
+  runCase(atTheCentre(singlePointCloud(Vec::Zero()), rng));
+  runCase(atTheCentre(ball(Family::Cloud, 0.1), rng));  // every point equally deep
+  for (bool pole : {false, true})
+    for (double gap : {0.0, 1e-9}) {
+      // The grid holds the point under the sphere: move the sphere over the grid point (0, 0).
+      Case c = sphereOnSheet(sheet(Family::Cloud, 0.4), gap, pole, rng);
+      c.XB.translation() = c.XA * Vec(0, 0, kR + gap);
+      runCase(c);
+    }
+}
+
+TEST(Tangent, NurbsAtTheCentreAndTangentSurface) {
+  std::mt19937_64 rng(44);
+  runCase(atTheCentre(ball(Family::Nurbs, kR), rng));  // two coincident spheres: depth 2R, any direction
+  runCase(sphereOnSheet(sheet(Family::Nurbs, 0.4), 0.0, false, rng));
+}
+
+// Known bug (found here, not fixed): closest-point queries near a NURBS sphere's pole (a collapsed patch edge) cost
+// 40-220 us against 3-12 us elsewhere on the sphere. A sheet touching a NURBS sphere (gap 0, or within the
+// tolerance) goes to the generic search, whose first-order branch and bound cannot close on a tangent contact and
+// spends its 400,000 point queries: 2.5-3 s at a generic point (bounded, [-2.6e-5, gap]), 20-30 s at the pole.
+// (At gap 1e-9 with tolerance 1e-12 the NURBS-mesh search proves the gap in 1 ms, also at the pole: above.)
+TEST(Tangent, TouchingAtThePole) {
+  GTEST_SKIP() << "known: a sheet touching a NURBS sphere at its pole takes 20-30 s (slow pole queries)";
+  std::mt19937_64 rng(47);
+  runCase(sphereOnSheet(sheet(Family::Mesh, 0.4), 0.0, true, rng));
+  runCase(sphereOnSheet(sheet(Family::Nurbs, 0.4), 0.0, true, rng));
+}
+
+// Known bug (the open issue of slow closest-point queries near the centre of a NURBS sphere, not fixed here):
+// those queries cost 0.3-5 ms instead of ~40 us (every subpatch stays a candidate), and the translation-depth
+// search drives its overlap witness to the deepest point of a contained NURBS ball — its centre — with a budget
+// that counts point queries, not their cost. Measured: a NURBS ball (r 0.2) inside a NURBS box 10.6 s (certified),
+// a NURBS ball (r 0.1) centred in a NURBS sphere 6 s (bounded). (Primitive, mesh and cloud models at the centre
+// of a NURBS sphere run above: 0.1-2.5 s since the containment test comes first in the NURBS pair routines.)
+TEST(Tangent, NurbsBallInsideNurbsSolid) {
+  GTEST_SKIP() << "known: point queries near a NURBS sphere's centre are slow; a contained NURBS ball takes 6-11 s";
+  std::mt19937_64 rng(45);
+  runCase(atTheCentre(ball(Family::Nurbs, 0.1), rng));
+  Pose XA = randomRotation(rng), XB = XA;
+  XB.translation() = XA * Vec(-0.3, 0.1, 0.2);
+  const Body small = ball(Family::Nurbs, 0.2), big = box(Family::Nurbs, Vec(1, 0.8, 0.6));
+  runCase(makeCase("containment", small, XA, big, XB, exactly(*signedDistanceOracle(small, XA, big, XB))));
+}
+
+// Known bug (found here, not fixed): a NURBS–NURBS overlap whose way out leaves a NURBS sphere touching the other
+// solid at its pole (the collapsed patch edge). The separation tests of the depth search near that contact cost
+// 0.6 s (crossing by 1e-9) to 2.3 s (touching: the pair search gives up and the generic search runs) each,
+// instead of 0.2 ms at any other point of the sphere, so the query takes 45 s (6 s at tolerance 1e-6).
+TEST(Tangent, NurbsOverlapLeavingThroughThePole) {
+  GTEST_SKIP() << "known: NURBS-NURBS separation tests touching at a sphere's pole are slow; this query takes 45 s";
+  std::mt19937_64 rng(46);
+  const Body a = box(Family::Nurbs, Vec(0.5, 0.4, 0.3)), b = ball(Family::Nurbs, 0.5);
+  const Pose XA = randomRotation(rng);
+  Pose XB = XA;  // the sphere's pole axis along the box's z: it leaves through the +z face, touching at the pole
+  XB.translation() = XA * Vec(0.1, -0.1, 0.3);
+  runCase(makeCase("deep", a, XA, b, XB, exactly(-0.5)));
+}
+
+}  // namespace
+}  // namespace extremes
