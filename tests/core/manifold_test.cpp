@@ -78,7 +78,8 @@ TEST(Manifold, SphereOnPlaneKeepsItsDeepestPointFirst) {
   const auto cs = unidist::manifoldContacts(ball, at(Vec(0.3, -0.2, 0.499)), floor, Iso::Identity(), o);
   ASSERT_EQ(cs.size(), 1u);
   EXPECT_NEAR(cs[0].distance, -0.001, 1e-9);
-  EXPECT_TRUE(cs[0].pointA.isApprox(Vec(0.3, -0.2, -0.001), 1e-9));
+  // The tilted patch points walk back onto it (deepen()) and merge with it: equal to 1e-8 of the radius.
+  EXPECT_LT((cs[0].pointA - Vec(0.3, -0.2, -0.001)).norm(), 1e-8) << cs[0].pointA.transpose();
 }
 
 TEST(Manifold, BoxOnBoxGivesTheFourCorners) {

@@ -5,10 +5,12 @@
 //    small angle about two axes through the deepest contact, the deepest point of each tilted pose is mapped
 //    back onto A's surface and kept when it is a contact of the untilted pair (its distance re-measured);
 //  * at most maxContacts, keeping the deepest and the most spread;
+//  * every contact's points on their local minimum: each moved to its model's local support point along the
+//    contact normal (an offset along a curved surface is a lever a solver turns into a rolling torque);
 //  * a warm start (ContactCache): while the relative pose of the pair has moved less than a guard distance
-//    since the last global search, the cached contacts are updated locally (alternating closest-point
-//    projections from the last witness points), which is sound because the global search was run with the
-//    margin grown by that guard: no contact within the margin can appear that it did not see;
+//    since the last global search, the cached contacts are updated locally (closest-point projections from the
+//    last witness points, the normal of the search riding with B), which is sound because the global search was
+//    run with the margin grown by that guard: no contact within the margin can appear that it did not see;
 //  * a skin: once a pair has touched, A is lifted off B along the last contact normal before measuring, and
 //    the contacts are moved back (exact for a translation), so resting overlaps are measured as separations —
 //    cheap, and well defined also against open surfaces and point clouds, which have no inside.

@@ -1,6 +1,6 @@
 // Simulation contacts (unidist/contact_manifold.h): the local minima of unidist::contacts(), a resting patch
-// filled in by tilting A, a warm start that re-measures cached witness points while the pair moves less than
-// a guard distance, and the reduction to the engine's contact count.
+// filled in by tilting A, every point moved onto its local support point, a warm start that re-measures cached
+// witness points while the pair moves less than a guard distance, and the reduction to the engine's count.
 #include "unidist/contact_manifold.h"
 
 #include "contacts/box_box_contacts.h"
@@ -24,6 +24,25 @@ constexpr double kPatchTilt = 0.05;
 constexpr double kGuardInTolerances = 10;
 /// Lift of A off B before measuring (at least the margin): resting overlaps are a few tolerances deep.
 constexpr double kSkinInTolerances = 50;
+/// deepen(): how far the support probe goes, in units of the model's bounding radius (each step shrinks a
+/// point's offset from its support point by about that over the curvature radius), and how many steps a global
+/// search's contacts and a warm-started contact get.
+constexpr double kDeepenReach = 100;
+constexpr int kDeepenRounds = 5;
+constexpr int kDeepenRoundsPerUpdate = 3;
+/// deepen() stops once a step moves the point less than this many bounding radii (converged: a closest point
+/// to a far probe is itself only that sharp along a curved surface, the distance to the probe being flat there),
+/// and accepts a step that makes the contact shallower by at most this many tolerances (rounding, see deepen()).
+constexpr double kDeepenConverged = 1e-6;
+constexpr double kDeepenSlackInTolerances = 1e-3;
+/// Inside B, deepen() keeps a step only if B's normal there is within ~1.4° of the contact normal (cosine).
+constexpr double kDeepenInsideAgreement = 0.9997;
+
+/// How deepen() runs: at most `rounds` support steps, each kept unless shallower by more than `slack`.
+struct DeepenSteps {
+  int rounds;
+  double slack;
+};
 
 double boundedDiagonal(const Model& m) {
   const Aabb box = m.localBounds();
@@ -93,24 +112,15 @@ Contact remeasureFromB(const Eigen::Vector3d& pB_W, const Model& a, const Eigen:
 
 /// The poses a local update needs, inverted and composed once per call rather than once per cached contact.
 struct UpdateFrames {
-  UpdateFrames(const Eigen::Isometry3d& X_WA, const Eigen::Isometry3d& X_WB, const Eigen::Isometry3d& X_AB0)
-      : X_WA(X_WA), X_WB(X_WB), X_AW(X_WA.inverse()), X_BW(X_WB.inverse()), X_WB_fromCachedA(X_WB * X_AB0.inverse()) {}
+  UpdateFrames(const Eigen::Isometry3d& X_WA, const Eigen::Isometry3d& X_WB, const Eigen::Isometry3d& X_AB0, double slack)
+      : X_WA(X_WA), X_WB(X_WB), X_AW(X_WA.inverse()), X_BW(X_WB.inverse()), X_WB_fromCachedA(X_WB * X_AB0.inverse()),
+        slack(slack) {}
   const Eigen::Isometry3d& X_WA;
   const Eigen::Isometry3d& X_WB;
   const Eigen::Isometry3d X_AW, X_BW;
   const Eigen::Isometry3d X_WB_fromCachedA;  ///< a point of B cached in A's frame at the search → world now
+  const double slack;                        ///< deepen()'s
 };
-
-/// A cached witness pair re-measured at the current poses: each point rides with its model and is re-projected
-/// onto the other; the deeper of the two readings wins (it is the one anchored at the sharper feature — a box
-/// corner's depth, not the zero a face point reads against that corner).
-Contact remeasure(const Contact& cached_A, const Model& a, const Model& b, const UpdateFrames& f) {
-  const Eigen::Vector3d pB_W = f.X_WB_fromCachedA * cached_A.pointB;  // B's point rides with B
-  const Contact fromA = remeasureFromA(f.X_WA * cached_A.pointA, b, f.X_WB, f.X_BW, cached_A.featureA);
-  if (!a.isSolid()) return fromA;  // no inside: B's point would read an unsigned distance
-  const Contact fromB = remeasureFromB(pB_W, a, f.X_WA, f.X_AW, cached_A.featureB);
-  return fromB.distance < fromA.distance ? fromB : fromA;
-}
 
 /// The same contact with the roles of A and B exchanged.
 Contact swapped(const Contact& c) {
@@ -121,20 +131,75 @@ Contact swapped(const Contact& c) {
   return s;
 }
 
-/// Moves a contact of the untilted pair to the locally deepest (or nearest) one: A's point is replaced by the
-/// point of A closest to a probe pushed from it along the contact normal (the probe's distance makes that the
-/// local support point of A in the normal direction), and B's point re-measured from it, while that deepens
-/// the contact. Converges where the two surfaces' normals are opposite: a local minimum of signed distance.
-Contact refine(Contact c, const Model& a, const Eigen::Isometry3d& X_WA, const Model& b, const Eigen::Isometry3d& X_WB,
-               double reach) {
-  const Eigen::Isometry3d X_AW = X_WA.inverse(), X_BW = X_WB.inverse();
-  for (int round = 0; round < 4; ++round) {
-    const Eigen::Vector3d probe = X_AW * (c.pointA + reach * c.normal);
-    const SurfacePoint s = a.closestPoint(probe);
+/// Moves A's point of a contact toward A's locally deepest point along `n` (the contact normal, A → B) and
+/// re-measures B's point from it: A's point of a local minimum is A's local support point in the normal
+/// direction. The support step is A's closest point to a probe pushed far along n (reach ≫ A's size: on a
+/// curved surface each step shrinks the point's offset from the support point by reach / A's radius), so a
+/// point on a ball reaches the true bottom in two steps instead of sitting where a coarse tolerance or the
+/// last step's rolling left it — an offset a solver turns into a torque, and a resting ball into a rolling one.
+///  * n stays fixed: a re-measured normal is tilted wherever B's point sits on an edge.
+///  * A walk that does not converge (each step at least half the last) is a flat face slightly tilted against
+///    n, where every step slides the point reach × tilt further: the point was as good a contact as any (a
+///    corner of the face, which keeps the patch spread), and it is kept.
+///  * A step is kept unless it makes the contact shallower by more than `slack`: near the bottom of a ball the
+///    depth changes by offset²/(2r), below the rounding of single-precision engine poses, so "strictly deeper"
+///    would stop anywhere within ~0.1 mm of it.
+///  * Inside B, a step is kept only while B's nearest face still faces along n: deeper in, B's closest point
+///    belongs to whichever face is nearest (a box's side), not to this contact.
+/// Point clouds are left alone (their points are the features), and half-spaces (flat everywhere).
+Contact deepen(const Contact& c, const Eigen::Vector3d& n, const Model& a, const Eigen::Isometry3d& X_WA,
+               const Eigen::Isometry3d& X_AW, const Model& b, const Eigen::Isometry3d& X_WB,
+               const Eigen::Isometry3d& X_BW, const DeepenSteps& steps) {
+  const double radius = a.localBoundingSphere().radius;
+  if (a.type() == ModelType::PointCloud || !std::isfinite(radius)) return c;  // a half-space is flat everywhere
+  const Eigen::Vector3d along = kDeepenReach * radius * n;
+  Contact best = c;
+  double lastMove = std::numeric_limits<double>::infinity();
+  for (int round = 0; round < steps.rounds; ++round) {
+    const SurfacePoint s = a.closestPoint(X_AW * (best.pointA + along));
     const Contact next = remeasureFromA(X_WA * s.point, b, X_WB, X_BW, s.feature);
-    if (!(next.distance < c.distance)) break;
-    c = next;
+    if (!(next.distance <= best.distance + steps.slack)) break;
+    if (next.distance < 0 && next.normal.dot(n) < kDeepenInsideAgreement) break;  // another face's depth
+    const double move = (next.pointA - best.pointA).norm();
+    if (move <= kDeepenConverged * radius) return next;
+    if (move > 0.5 * lastMove) return c;  // sliding over a flat face
+    best = next;
+    lastMove = move;
   }
+  return best;
+}
+
+/// deepen() on both sides along the contact's normal: B's point toward B's locally deepest point against A,
+/// then A's.
+Contact deepenBoth(const Contact& c, const Model& a, const Eigen::Isometry3d& X_WA, const Eigen::Isometry3d& X_AW,
+                   const Model& b, const Eigen::Isometry3d& X_WB, const Eigen::Isometry3d& X_BW, const DeepenSteps& steps) {
+  const Eigen::Vector3d n = c.normal;
+  const Contact fromB = swapped(deepen(swapped(c), -n, b, X_WB, X_BW, a, X_WA, X_AW, steps));
+  return deepen(fromB, n, a, X_WA, X_AW, b, X_WB, X_BW, steps);
+}
+
+/// A cached witness pair re-measured at the current poses: each point rides with its model and is re-projected
+/// onto the other; the deeper of the two readings wins (it is the one anchored at the sharper feature — a box
+/// corner's depth, not the zero a face point reads against that corner), and one deepening round lets a point
+/// on a rolling curved surface follow its support point. The normal is the global search's, riding with B, and
+/// the distance is measured along it (B's point is kept on B's tangent plane there): re-deriving it from the
+/// two points would tilt it wherever a point re-projects onto an edge — a flush corner a few hundredths of a
+/// millimetre past the face below it reads a normal tilted by gap/offset, up to 1e-2 rad, and Bullet's
+/// friction walks a resting stack on such tilts. Within the guard the true normal turns by at most the guard
+/// over the radius of curvature.
+Contact remeasure(const Contact& cached_A, const Model& a, const Model& b, const UpdateFrames& f) {
+  const Eigen::Vector3d pB_W = f.X_WB_fromCachedA * cached_A.pointB;  // B's point rides with B
+  Contact c = remeasureFromA(f.X_WA * cached_A.pointA, b, f.X_WB, f.X_BW, cached_A.featureA);
+  if (a.isSolid()) {  // without an inside, B's point would read an unsigned distance
+    const Contact fromB = remeasureFromB(pB_W, a, f.X_WA, f.X_AW, cached_A.featureB);
+    if (fromB.distance < c.distance) c = fromB;
+  }
+  const Eigen::Vector3d n = f.X_WB_fromCachedA.linear() * cached_A.normal;
+  c.normal = n;
+  c = deepenBoth(c, a, f.X_WA, f.X_AW, b, f.X_WB, f.X_BW, {kDeepenRoundsPerUpdate, f.slack});
+  c.normal = n;
+  c.distance = (c.pointB - c.pointA).dot(n);
+  c.pointB = c.pointA + c.distance * n;
   return c;
 }
 
@@ -144,19 +209,19 @@ Contact refine(Contact c, const Model& a, const Eigen::Isometry3d& X_WA, const M
 /// the tilted normal direction: no pair query, and exact against a flat B (against a curved one the
 /// re-measurement decides).
 void fillPatch(const Model& a, const Eigen::Isometry3d& X_WA, const Model& b, const Eigen::Isometry3d& X_WB,
-               double margin, std::vector<Contact>& cs) {
+               double margin, double slack, std::vector<Contact>& cs) {
   const Eigen::Vector3d n = cs.front().normal;
   const Eigen::Vector3d u = n.unitOrthogonal(), v = n.cross(u);
-  const double reach = a.localBoundingSphere().radius;
+  const Eigen::Isometry3d X_AW = X_WA.inverse(), X_BW = X_WB.inverse();
   std::vector<Contact> found;
   for (const Eigen::Vector3d& axis : {u, v}) {
     for (double sign : {1.0, -1.0}) {
       const Eigen::Matrix3d tilt = Eigen::AngleAxisd(sign * kPatchTilt, axis).toRotationMatrix();
       const Eigen::Vector3d dir_A = X_WA.linear().transpose() * (tilt.transpose() * n);
       const Eigen::Vector3d pA = a.support(dir_A);
-      Contact c = remeasureFromA(X_WA * pA, b, X_WB, X_WB.inverse(), a.closestPoint(pA).feature);
+      Contact c = remeasureFromA(X_WA * pA, b, X_WB, X_BW, a.closestPoint(pA).feature);
       if (c.distance > margin) continue;
-      found.push_back(refine(c, a, X_WA, b, X_WB, reach));
+      found.push_back(deepen(c, c.normal, a, X_WA, X_AW, b, X_WB, X_BW, {kDeepenRounds, slack}));
     }
   }
   cs.insert(cs.end(), found.begin(), found.end());
@@ -230,6 +295,11 @@ std::vector<Contact> globalContacts(const Model& a, const Eigen::Isometry3d& X_W
   static_cast<QueryOptions&>(co) = dial;
   co.margin = margin;
   std::vector<Contact> cs = contacts(a, X_WA, b, X_WB, co);
+  // A global minimum within a coarse tolerance may sit far from the true one along a curved surface (√(2·r·tol)
+  // on a ball of radius r): move every contact to its local minimum.
+  const Eigen::Isometry3d X_AW = X_WA.inverse(), X_BW = X_WB.inverse();
+  const DeepenSteps steps{kDeepenRounds, kDeepenSlackInTolerances * tol};
+  for (Contact& c : cs) c = deepenBoth(c, a, X_WA, X_AW, b, X_WB, X_BW, steps);
   if (a.isConvex() && b.isConvex() && meshLike(a) && meshLike(b)) {
     // Two convex polytopes (boxes, convex meshes) go through the mesh feature search, which reports corners but
     // not the global answer: add it (exact minimum translation when they overlap), the contact a solver wants
@@ -250,10 +320,10 @@ std::vector<Contact> globalContacts(const Model& a, const Eigen::Isometry3d& X_W
     // Tilt the smaller model: a large one's tilted support point is far from the contact (a floor's corner).
     if (b.localBoundingSphere().radius < a.localBoundingSphere().radius) {
       for (Contact& c : cs) c = swapped(c);
-      fillPatch(b, X_WB, a, X_WA, margin, cs);
+      fillPatch(b, X_WB, a, X_WA, margin, steps.slack, cs);
       for (Contact& c : cs) c = swapped(c);
     } else {
-      fillPatch(a, X_WA, b, X_WB, margin, cs);
+      fillPatch(a, X_WA, b, X_WB, margin, steps.slack, cs);
     }
     contact::mergeDuplicates(cs, 4 * tol);
   }
@@ -276,7 +346,7 @@ std::vector<Contact> contactsAt(const Model& a, const Eigen::Isometry3d& X_WA, c
   std::vector<Contact> out;
   if (cache && cache->valid && relativeMotion(a, b, cache->X_AB, X_AB) <= cache->guard) {
     ++cache->localUpdates;
-    const UpdateFrames frames(X_WA, X_WB, cache->X_AB);
+    const UpdateFrames frames(X_WA, X_WB, cache->X_AB, kDeepenSlackInTolerances * tol);
     for (const Contact& c : cache->contacts) {
       const Contact now = remeasure(c, a, b, frames);
       if (now.distance <= margin) out.push_back(now);
