@@ -44,5 +44,19 @@ TEST(FuzzRegressionsFiles, CloudBeyondFloatRangeIsRefused) {
   EXPECT_NE(errorOf([&] { loadModel(path); }).find("beyond +-1e30"), std::string::npos);
 }
 
+// fuzz_unurbs, fuzz_iges: loading and what the fuzz targets ask of a model (tests/fuzz/fuzz_common.h) took more
+// than libFuzzer's 10 s: a corrupted rational sphere of radius 1e4 whose closest point to a point near its centre
+// tied on every subpatch (now 2.4 ms, the Bernstein bound of core/src/nurbs/bernstein_bound.h), and an IGES
+// surface (now 0.2 s). Each must answer with finite values.
+TEST(FuzzRegressionsFiles, TimeoutInputsAnswer) {
+  for (const char* name : {"unurbs_timeout.unurbs.json", "iges_timeout.igs"}) {
+    SCOPED_TRACE(name);
+    const std::shared_ptr<const Model> m = loadModel(std::string(UNIDIST_FUZZ_DATA_DIR) + "/" + name);
+    const SurfacePoint p = m->closestPoint(Eigen::Vector3d(0.31, -0.72, 1.13));
+    EXPECT_TRUE(p.point.allFinite() && p.normal.allFinite() && std::isfinite(p.signedDistance));
+    EXPECT_TRUE(m->support(Eigen::Vector3d(0.6, 0.0, -0.8)).allFinite());
+  }
+}
+
 }  // namespace
 }  // namespace unidist

@@ -80,20 +80,17 @@ TEST(Tangent, NurbsAtTheCentreAndTangentSurface) {
 // spends its 400,000 point queries: 2.5-3 s at a generic point (bounded, [-2.6e-5, gap]), 20-30 s at the pole.
 // (At gap 1e-9 with tolerance 1e-12 the NURBS-mesh search proves the gap in 1 ms, also at the pole: above.)
 TEST(Tangent, TouchingAtThePole) {
-  GTEST_SKIP() << "known: a sheet touching a NURBS sphere at its pole takes 20-30 s (slow pole queries)";
+  GTEST_SKIP() << "known: a sheet touching a NURBS sphere at its pole takes > 20 s (generic search, tangent contact)";
   std::mt19937_64 rng(47);
   runCase(sphereOnSheet(sheet(Family::Mesh, 0.4), 0.0, true, rng));
   runCase(sphereOnSheet(sheet(Family::Nurbs, 0.4), 0.0, true, rng));
 }
 
-// Known bug (the open issue of slow closest-point queries near the centre of a NURBS sphere, not fixed here):
-// those queries cost 0.3-5 ms instead of ~40 us (every subpatch stays a candidate), and the translation-depth
-// search drives its overlap witness to the deepest point of a contained NURBS ball — its centre — with a budget
-// that counts point queries, not their cost. Measured: a NURBS ball (r 0.2) inside a NURBS box 10.6 s (certified),
-// a NURBS ball (r 0.1) centred in a NURBS sphere 6 s (bounded). (Primitive, mesh and cloud models at the centre
-// of a NURBS sphere run above: 0.1-2.5 s since the containment test comes first in the NURBS pair routines.)
+// Closest-point queries near the centre of a NURBS sphere used to cost 0.3-5 ms instead of ~40 us (every subpatch
+// stays a candidate for a bounding ball), and the translation-depth search drives its overlap witness to the
+// deepest point of a contained NURBS ball — its centre: this test took 6-11 s. Deep subpatches now get a
+// Bernstein lower bound (core/src/nurbs/bernstein_bound.h), exact where the distance is constant: about 1 s.
 TEST(Tangent, NurbsBallInsideNurbsSolid) {
-  GTEST_SKIP() << "known: point queries near a NURBS sphere's centre are slow; a contained NURBS ball takes 6-11 s";
   std::mt19937_64 rng(45);
   runCase(atTheCentre(ball(Family::Nurbs, 0.1), rng));
   Pose XA = randomRotation(rng), XB = XA;
@@ -102,12 +99,10 @@ TEST(Tangent, NurbsBallInsideNurbsSolid) {
   runCase(makeCase("containment", small, XA, big, XB, exactly(*signedDistanceOracle(small, XA, big, XB))));
 }
 
-// Known bug (found here, not fixed): a NURBS–NURBS overlap whose way out leaves a NURBS sphere touching the other
-// solid at its pole (the collapsed patch edge). The separation tests of the depth search near that contact cost
-// 0.6 s (crossing by 1e-9) to 2.3 s (touching: the pair search gives up and the generic search runs) each,
-// instead of 0.2 ms at any other point of the sphere, so the query takes 45 s (6 s at tolerance 1e-6).
+// A NURBS–NURBS overlap whose way out leaves a NURBS sphere touching the other solid at its pole (the collapsed
+// patch edge): the separation tests of the depth search near that contact cost 0.6-2.3 s each, and the query
+// 45 s, until deep subpatches got the Bernstein lower bound (above): 4 s.
 TEST(Tangent, NurbsOverlapLeavingThroughThePole) {
-  GTEST_SKIP() << "known: NURBS-NURBS separation tests touching at a sphere's pole are slow; this query takes 45 s";
   std::mt19937_64 rng(46);
   const Body a = box(Family::Nurbs, Vec(0.5, 0.4, 0.3)), b = ball(Family::Nurbs, 0.5);
   const Pose XA = randomRotation(rng);

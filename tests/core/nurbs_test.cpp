@@ -76,11 +76,15 @@ TEST(NurbsSurface, BezierPatchesReproduceTheSurface) {
       area += (p.u1 - p.u0) * (p.v1 - p.v0);
       for (double a : {0.0, 0.2, 0.5, 0.9, 1.0})
         for (double b : {0.0, 0.35, 0.7, 1.0}) {
-          const double u = p.u0 + a * (p.u1 - p.u0), v = p.v0 + b * (p.v1 - p.v0);
-          const SurfaceDerivatives bp = p.derivatives(a, b), ns = s.derivatives(u, v);
+          // Local (a, b) is the surface at surfaceParam(a, b): a Möbius map per direction (balanced weights),
+          // u = u0 + (u1 − u0)·c·a / (1 − a + c·a), so du/da = (u1 − u0)·c / (1 − a + c·a)².
+          const Eigen::Vector2d uv = p.surfaceParam(a, b);
+          const double dudA = (p.u1 - p.u0) * p.stretchU / std::pow(1 - a + p.stretchU * a, 2);
+          const double dvdB = (p.v1 - p.v0) * p.stretchV / std::pow(1 - b + p.stretchV * b, 2);
+          const SurfaceDerivatives bp = p.derivatives(a, b), ns = s.derivatives(uv.x(), uv.y());
           EXPECT_LT((bp.point - ns.point).norm(), 1e-13);
-          EXPECT_LT((bp.du - ns.du * (p.u1 - p.u0)).norm(), 1e-11);
-          EXPECT_LT((bp.dv - ns.dv * (p.v1 - p.v0)).norm(), 1e-11);
+          EXPECT_LT((bp.du - ns.du * dudA).norm(), 1e-11);
+          EXPECT_LT((bp.dv - ns.dv * dvdB).norm(), 1e-11);
         }
     }
     EXPECT_NEAR(area, (s.uMax() - s.uMin()) * (s.vMax() - s.vMin()), 1e-14);  // the patches tile the domain
@@ -100,7 +104,10 @@ TEST(NurbsSurface, UnclampedKnotVectorsUseTheirDomain) {
   EXPECT_EQ(s.uMin(), 2);
   EXPECT_EQ(s.uMax(), 5);
   for (const RationalBezierPatch& p : s.bezierPatches())
-    for (double a : {0.0, 0.5, 1.0}) EXPECT_LT((p.evaluate(a, 0.3) - s.evaluate(p.u0 + a * (p.u1 - p.u0), 0.3)).norm(), 1e-13);
+    for (double a : {0.0, 0.5, 1.0}) {
+      const Eigen::Vector2d uv = p.surfaceParam(a, 0.3);
+      EXPECT_LT((p.evaluate(a, 0.3) - s.evaluate(uv.x(), uv.y())).norm(), 1e-13);
+    }
 }
 
 TEST(NurbsSurface, InvalidInputIsNamed) {

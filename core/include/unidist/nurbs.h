@@ -67,11 +67,20 @@ struct SurfaceDerivatives {
 };
 
 /// A rational Bézier patch in homogeneous form: net[i * (degreeV + 1) + j] = (w x, w y, w z, w) with u-index i.
-/// Local parameters (s, t) in [0,1]^2 map to the NURBS parameters [u0,u1] x [v0,v1] it came from.
+/// Local parameters (s, t) in [0,1]^2 map to the NURBS parameters [u0,u1] x [v0,v1] it came from, through a
+/// Möbius reparametrisation per direction: u = u0 + (u1 − u0)·σ(s), σ(s) = c·s / (1 − s + c·s), c = stretchU
+/// (likewise v). NurbsSurface::bezierPatches() chooses c so that the corner weights are balanced (the same
+/// surface: multiplying weight (i, j) by a^i·b^j only reparametrises it): weights spanning 1e-6…1e6 along a
+/// direction crowd a patch's shape into a sliver of its parameter square, where midpoint subdivision never
+/// catches up.
 struct RationalBezierPatch {
   int degreeU = 0, degreeV = 0;
   std::vector<Eigen::Vector4d> net;
   double u0 = 0, u1 = 1, v0 = 0, v1 = 1;
+  double stretchU = 1, stretchV = 1;
+
+  /// The NURBS parameters of local (s, t).
+  Eigen::Vector2d surfaceParam(double s, double t) const;
 
   const Eigen::Vector4d& at(int i, int j) const { return net[static_cast<std::size_t>(i * (degreeV + 1) + j)]; }
   Eigen::Vector4d& at(int i, int j) { return net[static_cast<std::size_t>(i * (degreeV + 1) + j)]; }

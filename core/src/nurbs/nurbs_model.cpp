@@ -113,7 +113,7 @@ SurfacePoint NurbsModel::closestPoint(const Eigen::Vector3d& q_M) const {
   SurfacePoint out;
   out.point = h.point;
   out.feature = patchSurface_[static_cast<std::size_t>(h.patch)];
-  out.param = {P.u0 + h.s * (P.u1 - P.u0), P.v0 + h.t * (P.v1 - P.v0)};
+  out.param = P.surfaceParam(h.s, h.t);
   const Eigen::Vector3d away = q_M - h.point;
   const double d = away.norm();
   // Sum of the normals of the tied candidates at the same place (an edge or corner sees every face meeting

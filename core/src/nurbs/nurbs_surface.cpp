@@ -2,6 +2,7 @@
 #include "unidist/nurbs.h"
 
 #include "nurbs/bspline.h"
+#include "nurbs/reparametrise.h"
 
 #include <cmath>
 #include <string>
@@ -133,10 +134,15 @@ std::vector<RationalBezierPatch> NurbsSurface::bezierPatches() const {
       patch.v1 = rows.front().breaks[sv + 1];
       for (int i = 0; i <= p_; ++i)
         for (int j = 0; j <= q_; ++j) patch.net.push_back(rows[static_cast<std::size_t>(i)].segments[sv][static_cast<std::size_t>(j)]);
+      nurbs::balanceWeights(patch);
       out.push_back(std::move(patch));
     }
   }
   return out;
+}
+
+Eigen::Vector2d RationalBezierPatch::surfaceParam(double s, double t) const {
+  return {u0 + (u1 - u0) * nurbs::mobius(stretchU, s), v0 + (v1 - v0) * nurbs::mobius(stretchV, t)};
 }
 
 SurfaceDerivatives RationalBezierPatch::derivatives(double s, double t) const {

@@ -1,6 +1,7 @@
 // The two objectives the patch search minimises: distance to a point (closestPoint) and −d·p (support). Internal.
 #pragma once
 
+#include "nurbs/bernstein_bound.h"
 #include "nurbs/patch_search.h"
 
 #include <algorithm>
@@ -17,6 +18,9 @@ class PointObjective final : public Objective {
   double rankOf(double value) const override { return value < 0 ? -1.0 : value * value; }
   double lowerBound(const PatchNode& n) const override {
     return std::max(0.0, (q_ - n.ball.center).norm() - n.ball.radius);
+  }
+  double tightLowerBound(const PatchNode& n) const override {
+    return std::max(lowerBound(n), bernsteinDistanceBound(n.net, q_));
   }
   Cone criticalDirections(const BoundingSphere& b) const override { return coneTowards(q_, b.center, b.radius); }
   void derivatives(const SurfaceDerivatives& d, Eigen::Vector2d& g, Eigen::Matrix2d& H) const override {

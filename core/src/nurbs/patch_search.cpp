@@ -7,6 +7,7 @@
 namespace unidist::nurbs {
 namespace {
 
+constexpr int kTightBoundDepth = 4;  // pieces this deep get the Bernstein lower bound before a split
 constexpr int kMaxDepth = 40;          // beyond this a node is a leaf whatever its size (subdivision has stalled)
 constexpr double kLeafFraction = 0.5;  // leaf: radius below this fraction of the objective's scale...
 constexpr double kLeafAngle = 0.5;    // ...and a normal cone narrower than this (rad): Newton converges there
@@ -145,6 +146,14 @@ SearchResult minimise(const PatchForest& forest, const std::vector<RationalBezie
     }
     // Its minimum is on its border (a neighbour's) or at a patch corner (evaluated as nodes appear).
     if (!mayHoldCritical(n, f.criticalDirections(n.ball), false)) continue;
+    // Deep pieces that cannot improve on the best by the tolerance (a Bernstein bound: every piece ties at the
+    // centre of a sphere, where balls never prune, and the search would split them all down to the tolerance),
+    // except around the best point, whose neighbours' ties decide which side of an edge a point is on (the
+    // solid's sign). Shallow pieces are left to the balls: pruning them early measured slower overall (the
+    // depth search's witnesses change), and an ordinary query is done before this depth.
+    if (n.depth >= kTightBoundDepth && (out.best.point - n.ball.center).norm() > n.ball.radius + tieTolerance &&
+        f.tightLowerBound(n) >= out.best.value - tolerance)
+      continue;
     const bool flat = !n.normal.all && n.normal.angle <= kLeafAngle && n.ball.radius <= kLeafFraction * f.leafScale(n.ball);
     if (flat || n.depth >= kMaxDepth || n.ball.radius <= tolerance) {
       // A small, nearly flat piece holds at most one minimum: when an earlier Newton run ended inside it,

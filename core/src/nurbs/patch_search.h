@@ -23,6 +23,8 @@ class Objective {
   virtual double rankOf(double value) const { return value; }
   /// Proved: value >= this on the node's subpatch.
   virtual double lowerBound(const PatchNode& n) const = 0;
+  /// A tighter proved bound, dearer: asked only of a node the search would otherwise split.
+  virtual double tightLowerBound(const PatchNode& n) const { return lowerBound(n); }
   /// Directions an interior critical point's normal must be parallel to (for the point query: q − S).
   virtual Cone criticalDirections(const BoundingSphere& b) const = 0;
   /// Gradient and Hessian (with respect to the local parameters) of a smooth function with the same minimisers.

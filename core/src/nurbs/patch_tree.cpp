@@ -1,4 +1,5 @@
 #include "nurbs/patch_tree.h"
+#include "nurbs/reparametrise.h"
 
 #include <algorithm>
 #include <cmath>
@@ -197,10 +198,13 @@ void tangentCones(const RationalBezierPatch& patch, Cone& cu, Cone& cv) {
 
 RationalBezierPatch subpatch(const RationalBezierPatch& patch, double s0, double s1, double t0, double t1) {
   RationalBezierPatch out = restrict(restrict(patch, 0, s0, s1), 1, t0, t1);
-  out.u0 = patch.u0 + s0 * (patch.u1 - patch.u0);
-  out.u1 = patch.u0 + s1 * (patch.u1 - patch.u0);
-  out.v0 = patch.v0 + t0 * (patch.v1 - patch.v0);
-  out.v1 = patch.v0 + t1 * (patch.v1 - patch.v0);
+  const Eigen::Vector2d first = patch.surfaceParam(s0, t0), last = patch.surfaceParam(s1, t1);
+  out.u0 = first.x();
+  out.u1 = last.x();
+  out.v0 = first.y();
+  out.v1 = last.y();
+  out.stretchU = pieceStretch(patch.stretchU, s0, s1);
+  out.stretchV = pieceStretch(patch.stretchV, t0, t1);
   return out;
 }
 
