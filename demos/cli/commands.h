@@ -42,10 +42,18 @@ struct SimArgs {
   bool json = false;
 };
 
+struct HapticArgs {
+  std::string scene;  ///< default: demos/scenes/haptic.json
+  std::string plot;   ///< --plot DIR: force-vs-time PNGs
+  bool hasScene = false, hasPlot = false;
+  bool json = false;
+};
+
 /// Each returns the text for stdout; the caller writes it only when the whole command succeeded.
 std::string runDistance(const DistanceArgs& args);
 std::string runInfo(const InfoArgs& args);
 std::string runContacts(const ContactsArgs& args);
 std::string runSim(const SimArgs& args);
+std::string runHaptic(const HapticArgs& args);
 
 }  // namespace unidist::cli

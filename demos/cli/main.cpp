@@ -101,6 +101,15 @@ int run(int argc, char** argv) {
   CLI::Option* simRenderSize =
       simCmd->add_option("--render-size", sim.renderSize, "Pictures: WxH pixels (default 640x480)");
 
+  unidist::cli::HapticArgs haptic;
+  CLI::App* hapticCmd = app.add_subcommand(
+      "haptic", "Replay probes moving into and out of contact with a coherent tracker per pair (docs/tracking.md)");
+  CLI::Option* hapticScene =
+      hapticCmd->add_option("--scene", haptic.scene, "Haptic scene file (JSON; default demos/scenes/haptic.json)");
+  CLI::Option* hapticPlot =
+      hapticCmd->add_option("--plot", haptic.plot, "Write force-vs-time PNGs into DIR (one per pair, one per probe)");
+  hapticCmd->add_flag("--json", haptic.json, "Print one JSON object");
+
   // CLI11 would call an unknown subcommand an unexpected argument; say what it is and what exists.
   std::string known;
   bool isKnown = false;
@@ -138,9 +147,12 @@ int run(int argc, char** argv) {
   sim.hasRender = simRender->count() > 0;
   sim.hasRenderEvery = simRenderEvery->count() > 0;
   sim.hasRenderSize = simRenderSize->count() > 0;
+  haptic.hasScene = hapticScene->count() > 0;
+  haptic.hasPlot = hapticPlot->count() > 0;
   const std::string out = distCmd->parsed()   ? unidist::cli::runDistance(dist)
                           : contCmd->parsed() ? unidist::cli::runContacts(cont)
                           : simCmd->parsed()  ? unidist::cli::runSim(sim)
+                          : hapticCmd->parsed() ? unidist::cli::runHaptic(haptic)
                                               : unidist::cli::runInfo(info);
   std::fwrite(out.data(), 1, out.size(), stdout);
   return std::fflush(stdout) == 0 ? 0 : 1;
