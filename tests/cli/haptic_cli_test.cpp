@@ -61,6 +61,24 @@ TEST(CliHaptic, DefaultSceneJsonAndPlots) {
   }
 }
 
+// A guard twice the cutoff keeps minima alive between the cutoff and cutoff + 2·guard, where a local walk over the
+// bumpy slab could end on its bottom face and read the slab's thickness as a depth (deepest −322.8, |F| 2,270,
+// the tracker below the stateless minimum at 315 updates). Penetrating minima are now checked against the
+// models' inside tests.
+TEST(CliHaptic, AWideGuardReportsNoFalseOverlap) {
+  json s = json::parse(std::ifstream(std::string(UNIDIST_SCENES_DIR) + "/haptic.json"));
+  s["tracker"]["guard"] = 20;
+  s["probes"] = json::array({s["probes"][0]});            // the NURBS ball
+  s["environment"] = json::array({s["environment"][1]});  // the bumpy mesh slab
+  for (json* models : {&s["probes"], &s["environment"]})
+    for (json& m : *models) m["model"] = std::string(UNIDIST_SCENES_DIR) + "/" + m["model"].get<std::string>();
+  const fs::path path = scratch("wide_guard.json");
+  std::ofstream(path) << s.dump();
+  const Outcome r = run({"haptic", "--scene", path.string()});
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_NE(r.out.find("below it 0;"), std::string::npos) << r.out;
+}
+
 /// Runs a scene text and expects one error line containing `expected`, exit 2 and nothing on stdout.
 void expectBadScene(const std::string& text, const std::string& expected) {
   const fs::path path = scratch("bad.json");

@@ -22,7 +22,9 @@
 //    an inside (cloud, open surface) — its locally deepest point in the solid, by support probes.
 // A NURBS pair that leaves Newton's reach (a pole, an open surface's boundary, a branch that ended) falls back to
 // the alternation; minima that converge onto each other (both points within the merge distance) are merged,
-// keeping the oldest; minima beyond cutoff + 2·guard are dropped.
+// keeping the oldest; minima beyond cutoff + 2·guard are dropped, and so is a minimum that turns penetrating
+// while neither of its points is inside the other solid (a locally closest feature's sign is right only for the
+// globally closest one: a walk that ends on the far side of a slab reads the slab's thickness as a depth).
 //
 // Global pass policy. A global pass runs unidist::contacts() with the margin grown to cutoff + 2·guard. While the
 // relative pose has moved less than `guard` since the pose the pass ran at (largest displacement of any point of
@@ -108,6 +110,7 @@ struct TrackerCounters {
   long newtonIterations = 0;  ///< NURBS pair and point Newton steps
   long localSteps = 0;        ///< projections, walk and descent steps
   long fallbacks = 0;         ///< local updates that fell back to a global point query
+  long falseOverlaps = 0;     ///< minima dropped for a penetration sign their points' inside tests deny
 };
 
 class Tracker {

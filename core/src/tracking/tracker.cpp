@@ -199,6 +199,23 @@ struct Tracker::Impl {
     last.deepest = minima.empty() ? std::numeric_limits<double>::infinity() : minima.front().distance;
   }
 
+  /// A local update reads its sign from the locally closest feature, which is right only for the globally
+  /// closest one: a point above a slab whose walk ended on the slab's bottom face reads as the slab's thickness
+  /// deep. A minimum that turns penetrating (or arrives so) must have a point inside the other solid (the models'
+  /// own inside tests), else it is not a contact and is dropped. Once verified, a penetration that deepens
+  /// continuously is not re-tested (that would cost a global point query per update).
+  void dropFalseOverlaps(const Eigen::Isometry3d& X_AB) {
+    const double tol = options.tolerance;
+    const Eigen::Isometry3d X_BA = X_AB.inverse();
+    for (Track& t : tracks) {
+      const double d = t.m.distance;
+      if (!(d < -tol) || (t.hasPrevious && t.previous < -tol)) continue;
+      if (b->inside(X_BA * t.m.pA_A) || a->inside(X_AB * t.m.pB_B)) continue;
+      t.m.distance = std::numeric_limits<double>::infinity();
+      ++counters.falseOverlaps;
+    }
+  }
+
   void update(const Eigen::Isometry3d& X_WA, const Eigen::Isometry3d& X_WB) {
     if (!X_WA.matrix().allFinite() || !X_WB.matrix().allFinite()) throw InputError("Tracker: non-finite pose");
     last = TrackerUpdate{};
@@ -213,6 +230,7 @@ struct Tracker::Impl {
       merge(pending.get(), X_AB);
     if (passDue(X_AB) && !pending.valid())
       startPass(X_AB, options.globalPass == GlobalPassMode::Inline || !passed);
+    dropFalseOverlaps(X_AB);
     dedupeAndDrop();
     report(X_WA, X_WB);
   }
