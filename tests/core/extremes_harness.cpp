@@ -15,6 +15,15 @@
 #include <utility>
 
 namespace extremes {
+
+/// Budgets are for an optimised build; a sanitizer build (UNIDIST_SANITIZE, tests/CMakeLists.txt) runs queries
+/// several times slower, so its budgets and hang limit are scaled by this.
+#ifdef UNIDIST_SANITIZER_SLOWDOWN
+constexpr double kSanitizerSlowdown = UNIDIST_SANITIZER_SLOWDOWN;
+#else
+constexpr double kSanitizerSlowdown = 1;
+#endif
+
 namespace {
 
 constexpr double kEps = std::numeric_limits<double>::epsilon();
@@ -170,7 +179,7 @@ unidist::DistanceResult runCase(const Case& c) {
   const std::shared_ptr<Run> run = launch(c);
   {
     // A hang is a hard failure: wait well past the budget, then end this test process with a message.
-    const double hardLimit = std::max(20.0, 4 * c.budgetSeconds);
+    const double hardLimit = std::max(20.0, 4 * c.budgetSeconds) * kSanitizerSlowdown;
     std::unique_lock<std::mutex> lock(run->m);
     if (!run->cv.wait_for(lock, std::chrono::duration<double>(hardLimit), [&] { return run->done; })) {
       std::fprintf(stderr, "HANG: %s | %s | %s: no answer after %.0f s\n", c.family.c_str(), c.extreme.c_str(),
@@ -207,7 +216,7 @@ unidist::DistanceResult runCase(const Case& c) {
     EXPECT_GE(r.distance, c.truth.lo - allowance) << context;
     EXPECT_LE(r.distance, c.truth.hi + allowance) << context;
   }
-  EXPECT_LE(run->seconds, c.budgetSeconds) << context;
+  EXPECT_LE(run->seconds, c.budgetSeconds * kSanitizerSlowdown) << context;
   if (std::getenv("UNIDIST_EXTREMES_VERBOSE")) {
     std::printf("CASE %s | %s | %s | d %.17g truth %.17g err %.2e %s %.4f s %s\n", c.family.c_str(), c.extreme.c_str(),
                 c.what.c_str(), r.distance, c.truth.lo, std::max({c.truth.lo - r.distance, r.distance - c.truth.hi, 0.0}),
