@@ -3,38 +3,33 @@
 #include "unidist/adapters/scene.h"
 
 #include "formats/text_scanner.h"
-#include "unidist/adapters/load.h"
-#include "unidist/adapters/spec.h"
+#include "json_fields.h"
 
-#include <nlohmann/json.hpp>
-
-#include <cmath>
 #include <filesystem>
-#include <map>
 #include <set>
 
 namespace unidist {
 namespace {
 
-using nlohmann::json;
+using json = JsonFields::json;
 
-class SceneParser {
+class SceneParser : JsonFields {
  public:
-  SceneParser(std::string baseDir, std::string what) : baseDir_(std::move(baseDir)), what_(std::move(what)) {}
+  using JsonFields::JsonFields;
 
   Scene parse(const std::string& text) {
     json root;
     try {
       root = json::parse(text);
     } catch (const json::exception& e) {
-      throw InputError(what_ + ": not valid JSON (" + shortReason(e.what()) + ")");
+      throw InputError(what() + ": not valid JSON (" + shortReason(e.what()) + ")");
     }
     onlyKeys(root, "top level", {"gravity", "dt", "steps", "bodies"}, {"bodies"});
     Scene s;
-    s.path = what_;
+    s.path = what();
     if (root.contains("gravity")) s.gravity = vector3(root["gravity"], "gravity");
     if (root.contains("dt")) s.dt = positive(root["dt"], "dt");
-    if (root.contains("steps")) s.steps = count(root["steps"], "steps");
+    if (root.contains("steps")) s.steps = integer(root["steps"], "steps", 0);
     const json& bodies = root["bodies"];
     if (!bodies.is_array() || bodies.empty()) fail("bodies", "must be a non-empty array of bodies");
     std::set<std::string> names;
@@ -47,79 +42,9 @@ class SceneParser {
   }
 
  private:
-  [[noreturn]] void fail(const std::string& where, const std::string& what) const {
-    throw InputError(what_ + ": " + where + ": " + what);
-  }
-
   static std::string shortReason(const std::string& what) {
     const auto colon = what.rfind(": ");
     return colon == std::string::npos ? what : what.substr(colon + 2);
-  }
-
-  void onlyKeys(const json& object, const std::string& where, std::initializer_list<const char*> allowed,
-                std::initializer_list<const char*> required) const {
-    if (!object.is_object()) fail(where, "must be a JSON object");
-    for (const char* k : required)
-      if (!object.contains(k)) fail(where, std::string("missing key \"") + k + "\"");
-    std::set<std::string> known(allowed.begin(), allowed.end());
-    for (const auto& item : object.items())
-      if (!known.count(item.key())) fail(where, "unknown key \"" + item.key() + "\"");
-  }
-
-  double number(const json& v, const std::string& where) const {
-    if (!v.is_number()) fail(where, "must be a number");
-    const double x = v.get<double>();
-    if (!std::isfinite(x)) fail(where, "must be finite");
-    return x;
-  }
-
-  double positive(const json& v, const std::string& where) const {
-    const double x = number(v, where);
-    if (x <= 0) fail(where, "must be > 0 (got " + v.dump() + ")");
-    return x;
-  }
-
-  double nonNegative(const json& v, const std::string& where) const {
-    const double x = number(v, where);
-    if (x < 0) fail(where, "must be >= 0 (got " + v.dump() + ")");
-    return x;
-  }
-
-  int count(const json& v, const std::string& where) const {
-    if (!v.is_number_integer() || v.get<long long>() < 0 || v.get<long long>() > 100000000)
-      fail(where, "must be an integer in [0, 1e8] (got " + v.dump() + ")");
-    return static_cast<int>(v.get<long long>());
-  }
-
-  Eigen::Vector3d vector3(const json& v, const std::string& where) const {
-    if (!v.is_array() || v.size() != 3) fail(where, "must be an array of 3 numbers");
-    return {number(v[0], where + "[0]"), number(v[1], where + "[1]"), number(v[2], where + "[2]")};
-  }
-
-  Eigen::Isometry3d pose(const json& v, const std::string& where) const {
-    if (!v.is_array() || v.size() != 7) fail(where, "must be an array of 7 numbers [tx,ty,tz,qw,qx,qy,qz]");
-    double x[7];
-    for (int i = 0; i < 7; ++i) x[i] = number(v[i], where + "[" + std::to_string(i) + "]");
-    Eigen::Quaterniond q(x[3], x[4], x[5], x[6]);
-    if (q.norm() < 1e-12) fail(where, "the quaternion is zero");
-    Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
-    X.linear() = q.normalized().toRotationMatrix();
-    X.translation() = Eigen::Vector3d(x[0], x[1], x[2]);
-    return X;
-  }
-
-  /// One model per distinct source text: bodies naming the same file share it (and its hierarchy).
-  std::shared_ptr<const Model> model(const std::string& source, const std::string& where) {
-    auto found = models_.find(source);
-    if (found != models_.end()) return found->second;
-    std::string resolved = source;
-    if (!looksLikePrimitiveSpec(source) && std::filesystem::path(source).is_relative())
-      resolved = (std::filesystem::path(baseDir_) / source).lexically_normal().string();
-    try {
-      return models_[source] = loadModel(resolved);
-    } catch (const InputError& e) {
-      fail(where, e.what());
-    }
   }
 
   SceneBody body(const json& v, const std::string& index) {
@@ -159,9 +84,6 @@ class SceneParser {
     if (v.contains("angular_velocity")) b.angularVelocity = vector3(v["angular_velocity"], where + ".angular_velocity");
     return b;
   }
-
-  std::string baseDir_, what_;
-  std::map<std::string, std::shared_ptr<const Model>> models_;
 };
 
 }  // namespace

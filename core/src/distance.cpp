@@ -54,9 +54,7 @@ detail::QueryContext settle(const Model& a, const Eigen::Isometry3d& X_WA, const
     throw InputError("tolerance must be finite");
   for (double inflate : {options.inflateA, options.inflateB})
     if (!std::isfinite(inflate) || inflate < 0) throw InputError("inflation radius must be finite and >= 0");
-  if (options.maxIterations < 1) throw InputError("maxIterations must be >= 1");
-  if (!std::isfinite(options.relativeTolerance) || options.relativeTolerance < 0)
-    throw InputError("relative tolerance must be finite and >= 0");
+  if (const char* why = invalidDialSetting(options)) throw InputError(why);
   double tol = options.tolerance < 0 ? defaultTolerance(a, X_WA, b, X_WB) : options.tolerance;
   tol = std::max(tol, options.relativeTolerance * provedSeparation(a, X_WA, b, X_WB));
   // "0" asks for what double precision allows: a few ulps of the coordinates involved.

@@ -9,7 +9,7 @@
 #include "output.h"
 
 #include "haptic_replay.h"
-#include "haptic_scene.h"
+#include "unidist/adapters/haptic_scene.h"
 #ifdef UNIDIST_HAVE_PNG
 #include "force_plot.h"
 #endif

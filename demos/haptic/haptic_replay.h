@@ -3,7 +3,7 @@
 // global minimum within the cutoff.
 #pragma once
 
-#include "haptic_scene.h"
+#include "unidist/adapters/haptic_scene.h"
 
 #include <Eigen/Core>
 

@@ -5,6 +5,7 @@
 // apart cases only; NURBS against a mesh: the NURBS tessellated ever finer (dial_tessellate.h).
 #include "bench/dial_peers.h"
 #include "bench/dial_tessellate.h"
+#include "bench/mesh_vs_fcl_util.h"
 
 #include <fcl/fcl.h>
 
@@ -14,6 +15,7 @@
 namespace dial {
 namespace {
 
+using bench::fclPose;
 using FclGeometry = std::shared_ptr<fcl::CollisionGeometryd>;
 
 FclGeometry fclMesh(const Soup& s) {
@@ -36,13 +38,6 @@ FclGeometry fclGeometry(const Geometry& g) {
   if (s.kind == "cone") return std::make_shared<fcl::Coned>(s.p0, 2 * s.p1);
   if (s.kind == "sphere") return std::make_shared<fcl::Sphered>(s.p0);
   return nullptr;  // FCL has no torus
-}
-
-fcl::Transform3d fclPose(const Pose& X) {
-  fcl::Transform3d T = fcl::Transform3d::Identity();
-  T.linear() = X.linear();
-  T.translation() = X.translation();
-  return T;
 }
 
 struct Query {

@@ -3,6 +3,8 @@
 // so tolerance, error and width share one dimensionless axis. Benchmark-only.
 #pragma once
 
+#include "bench/median.h"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -24,11 +26,7 @@ struct Sample {
   bool certified = false;
 };
 
-inline double quantile(std::vector<double> v, double q) {
-  if (v.empty()) return std::numeric_limits<double>::quiet_NaN();
-  std::sort(v.begin(), v.end());
-  return v[std::min(v.size() - 1, static_cast<std::size_t>(q * static_cast<double>(v.size())))];
-}
+using ::quantile;
 
 /// With DIAL_VERBOSE=1 in the environment every answer is also printed on stderr.
 inline void traceAnswer(const std::string& family, const std::string& method, const std::string& what, double setting,

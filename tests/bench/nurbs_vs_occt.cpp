@@ -8,6 +8,7 @@
 //             the distance between the tubes' core circles.
 //  tolerance: our time, error and bound width against the tolerance (1e-1 … 1e-12 of the size), per placement.
 // Every line starting "csv," is machine-readable (tests/bench/run_nurbs_benchmarks.sh collects them).
+#include "bench/median.h"
 #include "bench/nurbs_truth.h"
 #include "bench/occt_surface.h"
 #include "core/nurbs_fixtures.h"
@@ -34,12 +35,6 @@ using Vec = Eigen::Vector3d;
 using nurbs_truth::Placement;
 
 double micros(Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double, std::micro>(b - a).count(); }
-
-double quantile(std::vector<double> v, double q) {
-  if (v.empty()) return 0;
-  std::sort(v.begin(), v.end());
-  return v[std::min(v.size() - 1, static_cast<std::size_t>(q * static_cast<double>(v.size())))];
-}
 
 /// Median wall time of `reps` calls (µs); the last call's value is kept in `value`.
 double timeMedian(int reps, const std::function<double()>& call, double& value) {

@@ -31,12 +31,6 @@ using tracker_trajectory::kBall;
 using tracker_trajectory::kR;
 using tracker_trajectory::kTube;
 
-double percentile(std::vector<double> v, double p) {
-  if (v.empty()) return 0;
-  std::sort(v.begin(), v.end());
-  return v[std::min(v.size() - 1, static_cast<std::size_t>(p * static_cast<double>(v.size())))];
-}
-
 double microsSince(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
 }
@@ -97,11 +91,11 @@ void run(const Family& f, unidist::GlobalPassMode mode, int updates) {
   const unidist::TrackerCounters& c = tracker.counters();
   std::printf("%s,%s,%zu,%zu,%d,%.1f,%.1f,%.1f,%.1f,%.1f,%.1f,%ld,%.2f,%zu,%.1f,%.1f,%d,%d\n", f.name,
               mode == unidist::GlobalPassMode::Inline ? "inline" : "background", triangles(*f.ball),
-              triangles(*f.torus), updates, median(times), percentile(times, 0.99),
-              *std::max_element(times.begin(), times.end()), percentile(local, 0.99),
+              triangles(*f.torus), updates, median(times), quantile(times, 0.99),
+              *std::max_element(times.begin(), times.end()), quantile(local, 0.99),
               *std::max_element(local.begin(), local.end()), first, c.globalPasses,
               static_cast<double>(c.newtonIterations + c.localSteps) / updates, cold.size(), median(cold),
-              percentile(cold, 0.99), checked, misses);
+              quantile(cold, 0.99), checked, misses);
   std::fflush(stdout);
 }
 

@@ -23,6 +23,7 @@
 
 #include <functional>
 #include <memory>
+#include <optional>
 #include <random>
 #include <string>
 #include <vector>
@@ -168,9 +169,18 @@ inline Vec beyond(std::mt19937_64& rng, const oracle::Shape& s, const Pose& X, d
   return oracle::worldSupport(s, X, n) + uniform(rng, lo, hi) * n;
 }
 
-/// Draws cases until `count` are accepted (a brute-force truth decides whether a random pose qualifies).
-inline void drawUntil(std::vector<Case>& out, int count, const std::function<bool(std::vector<Case>&)>& draw) {
-  for (int accepted = 0, tries = 0; accepted < count && tries < 100 * count; ++tries) accepted += draw(out) ? 1 : 0;
+/// Draws random poses until one qualifies (a brute-force truth decides; at most 100 tries) and adds its case.
+inline void drawOne(std::vector<Case>& out, const std::function<std::optional<Case>()>& draw) {
+  for (int tries = 0; tries < 100; ++tries)
+    if (std::optional<Case> c = draw()) {
+      out.push_back(std::move(*c));
+      return;
+    }
+}
+
+/// A pose of random rotation whose translation is uniform in [-xy, xy]^2 x [-0.6, 0.6] (tori side by side).
+inline Pose nearby(std::mt19937_64& rng, double xy) {
+  return at(rng, Vec(uniform(rng, -xy, xy), uniform(rng, -xy, xy), uniform(rng, -0.6, 0.6)));
 }
 
 inline Circle torusCircle(const Library& L, const Pose& X) {

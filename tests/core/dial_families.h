@@ -29,13 +29,12 @@ inline Family primMesh(const Library& L, int n) {
     f.cases.push_back(apart(rng, L.pCone, L.cone, L.meshBox, L.box));
     f.cases.push_back(capsuleInto(rng, L, L.meshBox, L.box));
     // The capsule beside the (non-convex) torus mesh: segment–triangle brute force, less the radius.
-    drawUntil(f.cases, 1, [&](std::vector<Case>& out) {
+    drawOne(f.cases, [&]() -> std::optional<Case> {
       const Pose Xm = rotation(rng), Xc = oracle::randomPose(rng, 1.0);
       const Vec p = Xc * Vec(0, 0, -L.capsule.p1), q = Xc * Vec(0, 0, L.capsule.p1);
       const double truth = segmentMeshDistance(p, q, L.meshTorus->soup, Xm) - L.capsuleRadius;
-      if (truth < 1e-3 || meshSignedDistance(L.meshTorus->soup, Xm, p) < 0) return false;
-      out.push_back(makeCase("capsule-torus mesh", L.pCapsule, Xc, L.meshTorus, Xm, truth));
-      return true;
+      if (truth < 1e-3 || meshSignedDistance(L.meshTorus->soup, Xm, p) < 0) return std::nullopt;
+      return makeCase("capsule-torus mesh", L.pCapsule, Xc, L.meshTorus, Xm, truth);
     });
   }
   return f;
@@ -75,12 +74,11 @@ inline Family meshMesh(const Library& L, int n) {
   std::mt19937_64 rng(805);
   Family f{"mesh-mesh", {}};
   for (int i = 0; i < n; ++i) {
-    drawUntil(f.cases, 1, [&](std::vector<Case>& out) {
-      const Pose Xa = rotation(rng), Xb = at(rng, Vec(uniform(rng, -1.2, 1.2), uniform(rng, -1.2, 1.2), uniform(rng, -0.6, 0.6)));
+    drawOne(f.cases, [&]() -> std::optional<Case> {
+      const Pose Xa = rotation(rng), Xb = nearby(rng, 1.2);
       const double truth = meshMeshDistance(L.meshTorus->soup, Xa, L.meshTorus->soup, Xb);
-      if (truth < 1e-3) return false;  // touching or interpenetrating: no brute-force truth for the depth
-      out.push_back(makeCase("torus mesh-torus mesh", L.meshTorus, Xa, L.meshTorus, Xb, truth));
-      return true;
+      if (truth < 1e-3) return std::nullopt;  // touching or interpenetrating: no brute-force truth for the depth
+      return makeCase("torus mesh-torus mesh", L.meshTorus, Xa, L.meshTorus, Xb, truth);
     });
     f.cases.push_back(apart(rng, L.meshBox, L.box, L.meshBox2, L.box2));
     const Pose Xa = oracle::randomPose(rng, 0.5);
@@ -113,20 +111,18 @@ inline Family meshNurbs(const Library& L, int n) {
     const Vec c = beyond(rng, L.box, Xm, 0.35, 0.9);
     f.cases.push_back(makeCase("grid box-NURBS sphere", L.meshBox, Xm, L.nurbsSphere, at(rng, c),
                                L.box.signedDistance(Xm.inverse() * c) - L.sphereRadius));
-    drawUntil(f.cases, 1, [&](std::vector<Case>& out) {  // the ball beside the non-convex torus mesh
+    drawOne(f.cases, [&]() -> std::optional<Case> {  // the ball beside the non-convex torus mesh
       const Pose Xt = rotation(rng);
       const Vec centre = uniform(rng, 0.5, 1.4) * oracle::randomUnit(rng);
       const double truth = meshSignedDistance(L.meshTorus->soup, Xt, centre) - L.sphereRadius;
-      if (truth < 1e-3) return false;
-      out.push_back(makeCase("torus mesh-NURBS sphere", L.meshTorus, Xt, L.nurbsSphere, at(rng, centre), truth));
-      return true;
+      if (truth < 1e-3) return std::nullopt;
+      return makeCase("torus mesh-NURBS sphere", L.meshTorus, Xt, L.nurbsSphere, at(rng, centre), truth);
     });
-    drawUntil(f.cases, 1, [&](std::vector<Case>& out) {  // NURBS torus beside the torus mesh: circle to triangles
-      const Pose Xt = rotation(rng), Xn = at(rng, Vec(uniform(rng, -1.2, 1.2), uniform(rng, -1.2, 1.2), uniform(rng, -0.6, 0.6)));
+    drawOne(f.cases, [&]() -> std::optional<Case> {  // NURBS torus beside the torus mesh: circle to triangles
+      const Pose Xt = rotation(rng), Xn = nearby(rng, 1.2);
       const double truth = circleMeshDistance(torusCircle(L, Xn), L.meshTorus->soup, Xt) - L.torusA;
-      if (truth < 1e-3) return false;
-      out.push_back(makeCase("torus mesh-NURBS torus", L.meshTorus, Xt, L.nurbsTorus, Xn, truth));
-      return true;
+      if (truth < 1e-3) return std::nullopt;
+      return makeCase("torus mesh-NURBS torus", L.meshTorus, Xt, L.nurbsTorus, Xn, truth);
     });
   }
   return f;
@@ -170,13 +166,12 @@ inline Family nurbsNurbs(const Library& L, int n) {
     const Pose Xt = rotation(rng), Xs = at(rng, nearTorus(rng, L, Xt, uniform(rng, 0.45, 1.1)));
     f.cases.push_back(makeCase("NURBS torus-NURBS sphere", L.nurbsTorus, Xt, L.nurbsSmall, Xs,
                                pointCircle(Xs.translation(), torusCircle(L, Xt)) - L.torusA - L.smallRadius));
-    drawUntil(f.cases, 1, [&](std::vector<Case>& out) {
-      const Pose Xa2 = rotation(rng), Xb2 = at(rng, Vec(uniform(rng, -1.3, 1.3), uniform(rng, -1.3, 1.3), uniform(rng, -0.6, 0.6)));
+    drawOne(f.cases, [&]() -> std::optional<Case> {
+      const Pose Xa2 = rotation(rng), Xb2 = nearby(rng, 1.3);
       const Circle ca = torusCircle(L, Xa2), cb = torusCircle(L, Xb2);
       const double truth = nurbs_truth::circleCircle({ca.centre, ca.axis, ca.radius}, {cb.centre, cb.axis, cb.radius}) - 2 * L.torusA;
-      if (truth < 1e-3) return false;
-      out.push_back(makeCase("NURBS torus-NURBS torus", L.nurbsTorus, Xa2, L.nurbsTorus, Xb2, truth));
-      return true;
+      if (truth < 1e-3) return std::nullopt;
+      return makeCase("NURBS torus-NURBS torus", L.nurbsTorus, Xa2, L.nurbsTorus, Xb2, truth);
     });
   }
   return f;

@@ -1,6 +1,6 @@
 // Brute-force truth for the tolerance-dial cases (tests/core/dial_cases.h), independent of the library:
-// long-double triangle–triangle and segment–triangle distances (written again after tests/core/mesh_pairs_test.cpp,
-// whose copies live in an anonymous namespace), mesh signed distance (distance and winding number over every
+// long-double triangle–triangle and segment–triangle distances (meshfix::triTriSq, tests/core/mesh_fixtures.h),
+// mesh signed distance (distance and winding number over every
 // triangle), the exact penetration depth of two boxes (15 separating axes), the distance from a circle to a mesh
 // (a torus is the set of points within its tube radius of that circle), and point samples of known surfaces.
 #pragma once

@@ -18,37 +18,39 @@ std::shared_ptr<const unidist::Model> nurbsModel(std::vector<NurbsSurface> surfa
   return std::make_shared<NurbsModel>(std::move(surfaces), solid);
 }
 
-std::shared_ptr<const unidist::Model> meshModel(const meshfix::Soup& s) {
-  return std::make_shared<unidist::TriangleMesh>(s.vertices, s.triangles);
-}
-
-std::shared_ptr<const unidist::Model> cloudModel(const std::vector<Vec>& points) {
-  return std::make_shared<unidist::PointCloud>(points);
-}
-
 /// Points spread over the sphere of radius r (Fibonacci lattice).
 std::vector<Vec> spherePoints(double r, int n) {
   std::vector<Vec> out;
-  const double golden = M_PI * (3.0 - std::sqrt(5.0));
-  for (int i = 0; i < n; ++i) {
-    const double z = 1 - (i + 0.5) * 2.0 / n, s = std::sqrt(1 - z * z);
-    out.push_back(r * Vec(s * std::cos(golden * i), s * std::sin(golden * i), z));
-  }
+  for (const Vec& u : oracle::sphereDirections(n)) out.push_back(r * u);
   return out;
+}
+
+/// The NURBS sphere of radius r: the meridian revolved about z by a rational quadratic circle (9 control points of
+/// nurbs_fixtures::unitCircle(), or that circle reparametrised), over the u knots given.
+NurbsSurface sphereOfCircle(double r, const std::vector<nurbs_fixtures::Point2W>& circle, std::vector<double> uKnots) {
+  const double h = std::sqrt(0.5);
+  const std::vector<nurbs_fixtures::Point2W> meridian = {{0, -1, 1}, {1, -1, h}, {1, 0, 1}, {1, 1, h}, {0, 1, 1}};
+  Net net;
+  for (const auto& c : circle) {
+    net.emplace_back();
+    for (const auto& p : meridian) net.back().emplace_back(r * c.a * p.a, r * c.b * p.a, r * p.b, c.w * p.w);
+  }
+  return {2, 2, std::move(uKnots), {0, 0, 0, .5, .5, 1, 1, 1}, net};
+}
+
+Body nurbsBall(double r, NurbsSurface s, std::string label) {
+  Body b;
+  b.family = Family::Nurbs;
+  b.kind = Kind::Ball;
+  b.radius = r;
+  b.model = nurbsModel({std::move(s)}, true);
+  b.label = std::move(label);
+  return b;
 }
 
 /// Flat square [-s, s]^2 at z = 0, n x n quads, two triangles each (open).
 meshfix::Soup flatSheet(double s, int n) {
-  meshfix::Soup out;
-  for (int i = 0; i <= n; ++i)
-    for (int j = 0; j <= n; ++j) out.vertices.emplace_back(-s + 2 * s * i / n, -s + 2 * s * j / n, 0);
-  auto id = [&](int i, int j) { return static_cast<std::uint32_t>(i * (n + 1) + j); };
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j) {
-      out.triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
-      out.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
-    }
-  return out;
+  return meshfix::heightSheet(s, n, [](double, double) { return 0.0; });
 }
 
 /// The box as six bilinear patches, each with Su x Sv outward.
@@ -86,6 +88,17 @@ NurbsSurface flatNurbsSheet(double s) {
 }  // namespace
 
 
+void setMesh(Body& b, meshfix::Soup s) {
+  b.points = s.vertices;
+  b.model = std::make_shared<unidist::TriangleMesh>(s.vertices, s.triangles);
+  b.soup = std::move(s);
+}
+
+void setCloud(Body& b, std::vector<Vec> points) {
+  b.model = std::make_shared<unidist::PointCloud>(points);
+  b.points = std::move(points);
+}
+
 const char* familyName(Family f) {
   switch (f) {
     case Family::Prim: return "prim";
@@ -112,23 +125,17 @@ Body ball(Family f, double r) {
       b.label = "sphere";
       break;
     case Family::Mesh:
-      b.soup = meshfix::icosphere(r, 2);
-      b.points = b.soup.vertices;
-      b.model = meshModel(b.soup);
+      setMesh(b, meshfix::icosphere(r, 2));
       b.label = "icosphere(320)";
       break;
     case Family::Cloud:
-      b.points = spherePoints(r, 200);
-      b.model = cloudModel(b.points);
+      setCloud(b, spherePoints(r, 200));
       b.label = "sphere cloud(200)";
       break;
-    case Family::Nurbs: {
-      std::vector<NurbsSurface> s;
-      s.push_back(nurbs_fixtures::sphereSurface(r));
-      b.model = nurbsModel(std::move(s), true);
+    case Family::Nurbs:
+      b.model = nurbsModel({nurbs_fixtures::sphereSurface(r)}, true);
       b.label = "nurbs sphere";
       break;
-    }
   }
   return b;
 }
@@ -144,14 +151,11 @@ Body box(Family f, const Vec& half) {
       b.label = "box";
       break;
     case Family::Mesh:
-      b.soup = meshfix::gridBox(half, 3);
-      b.points = b.soup.vertices;
-      b.model = meshModel(b.soup);
+      setMesh(b, meshfix::gridBox(half, 3));
       b.label = "grid box(108)";
       break;
     case Family::Cloud:
-      b.points = meshfix::gridBox(half, 6).vertices;
-      b.model = cloudModel(b.points);
+      setCloud(b, meshfix::gridBox(half, 6).vertices);
       b.label = "box lattice cloud";
       break;
     case Family::Nurbs:
@@ -173,23 +177,17 @@ Body sheet(Family f, double s) {
       b.label = "half-space";
       break;
     case Family::Mesh:
-      b.soup = flatSheet(s, 4);
-      b.points = b.soup.vertices;
-      b.model = meshModel(b.soup);
+      setMesh(b, flatSheet(s, 4));
       b.label = "flat mesh sheet";
       break;
     case Family::Cloud:
-      b.points = flatSheet(s, 10).vertices;
-      b.model = cloudModel(b.points);
+      setCloud(b, flatSheet(s, 10).vertices);
       b.label = "flat cloud grid";
       break;
-    case Family::Nurbs: {
-      std::vector<NurbsSurface> v;
-      v.push_back(flatNurbsSheet(s));
-      b.model = nurbsModel(std::move(v), false);
+    case Family::Nurbs:
+      b.model = nurbsModel({flatNurbsSheet(s)}, false);
       b.label = "flat nurbs sheet";
       break;
-    }
   }
   return b;
 }
@@ -261,10 +259,8 @@ Body needleBox(const Vec& h) {
   b.family = Family::Mesh;
   b.kind = Kind::Box;
   b.half = h;
-  b.soup = s;
-  b.points = s.vertices;
-  b.model = meshModel(s);
   b.label = "needle box mesh(" + std::to_string(s.triangles.size()) + ")";
+  setMesh(b, std::move(s));
   return b;
 }
 
@@ -273,66 +269,35 @@ Body duplicatePointBall(double r) {
   std::vector<Vec> pts;
   for (const Vec& p : b.points) pts.insert(pts.end(), {p, p, p});
   for (int k = 0; k < 50; ++k) pts.push_back(b.points[17]);
-  b.points = pts;
-  b.model = cloudModel(pts);
   b.label = "sphere cloud with duplicates(" + std::to_string(pts.size()) + ")";
+  setCloud(b, std::move(pts));
   return b;
 }
 
 Body fullMultiplicityBall(double r) {
   // The circle with its knot 0.5 at multiplicity 3 (= degree + 1): the point (-1, 0) is given twice, once
   // ending the first half and once starting the second; the two halves only meet there.
-  const double h = std::sqrt(0.5);
-  const std::vector<nurbs_fixtures::Point2W> meridian = {{0, -1, 1}, {1, -1, h}, {1, 0, 1}, {1, 1, h}, {0, 1, 1}};
   std::vector<nurbs_fixtures::Point2W> circle = nurbs_fixtures::unitCircle();
   circle.insert(circle.begin() + 4, circle[4]);
-  Net net;
-  for (const auto& c : circle) {
-    net.emplace_back();
-    for (const auto& p : meridian) net.back().emplace_back(r * c.a * p.a, r * c.b * p.a, r * p.b, c.w * p.w);
-  }
-  std::vector<NurbsSurface> s;
-  s.emplace_back(2, 2, std::vector<double>{0, 0, 0, .25, .25, .5, .5, .5, .75, .75, 1, 1, 1},
-                 std::vector<double>{0, 0, 0, .5, .5, 1, 1, 1}, net);
-  Body b;
-  b.family = Family::Nurbs;
-  b.kind = Kind::Ball;
-  b.radius = r;
-  b.model = nurbsModel(std::move(s), true);
-  b.label = "nurbs sphere, knot multiplicity p+1";
-  return b;
+  return nurbsBall(r, sphereOfCircle(r, circle, {0, 0, 0, .25, .25, .5, .5, .5, .75, .75, 1, 1, 1}),
+                   "nurbs sphere, knot multiplicity p+1");
 }
 
 Body extremeWeightBall(double r, double span) {
   // A quadratic arc is unchanged when its end weights change and the middle weight keeps w1^2 / (w0 w2): the
   // quarter circles get end weights alternating span and 1/span (middle weights stay sqrt(1/2)).
-  const double h = std::sqrt(0.5);
-  const std::vector<nurbs_fixtures::Point2W> meridian = {{0, -1, 1}, {1, -1, h}, {1, 0, 1}, {1, 1, h}, {0, 1, 1}};
   std::vector<nurbs_fixtures::Point2W> circle = nurbs_fixtures::unitCircle();
   for (std::size_t k = 0; k < circle.size(); k += 2) circle[k].w = (k / 2) % 2 == 0 ? span : 1 / span;
-  Net net;
-  for (const auto& c : circle) {
-    net.emplace_back();
-    for (const auto& p : meridian) net.back().emplace_back(r * c.a * p.a, r * c.b * p.a, r * p.b, c.w * p.w);
-  }
-  std::vector<NurbsSurface> s;
-  s.emplace_back(2, 2, nurbs_fixtures::circleKnots(), std::vector<double>{0, 0, 0, .5, .5, 1, 1, 1}, net);
-  Body b;
-  b.family = Family::Nurbs;
-  b.kind = Kind::Ball;
-  b.radius = r;
-  b.model = nurbsModel(std::move(s), true);
-  b.label = "nurbs sphere, weights " + unidist::testing::sci(1 / span) + ".." + unidist::testing::sci(span);
-  return b;
+  return nurbsBall(r, sphereOfCircle(r, circle, nurbs_fixtures::circleKnots()),
+                   "nurbs sphere, weights " + unidist::testing::sci(1 / span) + ".." + unidist::testing::sci(span));
 }
 
 Body singlePointCloud(const Vec& p) {
   Body b;
   b.family = Family::Cloud;
   b.kind = Kind::Point;
-  b.points = {p};
-  b.model = cloudModel(b.points);
   b.label = "one-point cloud";
+  setCloud(b, {p});
   return b;
 }
 
@@ -347,11 +312,6 @@ Pose randomRotation(std::mt19937_64& rng) {
   Pose X = Pose::Identity();
   X.linear() = Eigen::Quaterniond(n01(rng), n01(rng), n01(rng), n01(rng)).normalized().toRotationMatrix();
   return X;
-}
-
-Vec randomUnit(std::mt19937_64& rng) {
-  std::normal_distribution<double> n01;
-  return Vec(n01(rng), n01(rng), n01(rng)).normalized();
 }
 
 Case makeCase(const std::string& extreme, const Body& a, const Pose& XA, const Body& b, const Pose& XB, Truth truth) {

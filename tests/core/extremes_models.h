@@ -8,6 +8,7 @@
 #include "core/extremes_harness.h"
 #include "core/mesh_fixtures.h"
 #include "core/nurbs_fixtures.h"
+#include "core/oracles.h"
 #include "unidist/mesh.h"
 #include "unidist/nurbs.h"
 #include "unidist/point_cloud.h"
@@ -59,6 +60,11 @@ Body fullMultiplicityBall(double r);  ///< NURBS sphere with a knot of multiplic
 Body extremeWeightBall(double r, double span);  ///< NURBS sphere, rational weights spanning 1/span ... span
 Body singlePointCloud(const Vec& p);
 
+/// A mesh body's soup, its points (the vertices) and its model, built on exactly these triangles.
+void setMesh(Body& b, meshfix::Soup s);
+/// A cloud body's points and its model.
+void setCloud(Body& b, std::vector<Vec> points);
+
 /// World support point of a posed body.
 Vec worldSupport(const Body& b, const Pose& X, const Vec& u_W);
 
@@ -75,7 +81,7 @@ std::optional<double> signedDistanceOracle(const Body& a, const Pose& XA, const 
 
 Pose rotation(const Vec& axis, double angle);
 Pose randomRotation(std::mt19937_64& rng);
-Vec randomUnit(std::mt19937_64& rng);
+using oracle::randomUnit;
 
 /// A case with the models and poses filled in (family and names from the bodies).
 Case makeCase(const std::string& extreme, const Body& a, const Pose& XA, const Body& b, const Pose& XB, Truth truth);

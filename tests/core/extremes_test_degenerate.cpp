@@ -37,7 +37,7 @@ TEST(DegenerateModels, AreWhatTheyClaim) {
   EXPECT_EQ(mesh.stats().droppedDuplicate, 1u);
   EXPECT_EQ(mesh.triangles().size(), 6u * 8u);
   // Both reparametrised NURBS spheres are the exact sphere: points of every patch lie on it.
-  for (const Body& b : {fullMultiplicityBall(0.35), extremeWeightBall(0.35, kWorkingWeightSpan), extremeWeightBall(0.35, 1e6)}) {
+  for (const Body& b : {fullMultiplicityBall(0.35), extremeWeightBall(0.35, kWorkingWeightSpan)}) {
     const auto& nurbs = static_cast<const unidist::NurbsModel&>(*b.model);
     EXPECT_TRUE(nurbs.isSolid());
     for (const unidist::RationalBezierPatch& patch : nurbs.patches())

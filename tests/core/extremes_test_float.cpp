@@ -37,15 +37,16 @@ Body throughFloat(const Body& b) {
       return b.kind == Kind::Ball ? ball(Family::Prim, static_cast<float>(b.radius)) : box(Family::Prim, roundedToFloat(b.half));
     case Family::Mesh: {
       Body m = b;
-      for (Vec& v : m.soup.vertices) v = roundedToFloat(v);
-      m.points = m.soup.vertices;
-      m.model = std::make_shared<unidist::TriangleMesh>(m.soup.vertices, m.soup.triangles);
+      meshfix::Soup soup = b.soup;
+      for (Vec& v : soup.vertices) v = roundedToFloat(v);
+      setMesh(m, std::move(soup));
       return m;
     }
     case Family::Cloud: {
       Body c = b;
-      for (Vec& p : c.points) p = roundedToFloat(p);
-      c.model = std::make_shared<unidist::PointCloud>(c.points);
+      std::vector<Vec> points = b.points;
+      for (Vec& p : points) p = roundedToFloat(p);
+      setCloud(c, std::move(points));
       return c;
     }
     case Family::Nurbs:  // a float NURBS sphere: its radius in float (the control points are multiples of it)

@@ -174,13 +174,14 @@ inline Soup torus(double R, double r, int nu, int nv) {
   return s;
 }
 
-/// Open sheet z = 0.2 sin(3x) cos(2y) over [-1, 1]², n × n quads.
-inline Soup wavySheet(int n) {
+/// Open sheet z = height(x, y) over [-half, half]², n × n quads split in two.
+template <class Height>
+Soup heightSheet(double half, int n, Height height) {
   Soup s;
   for (int i = 0; i <= n; ++i)
     for (int j = 0; j <= n; ++j) {
-      const double x = -1 + 2.0 * i / n, y = -1 + 2.0 * j / n;
-      s.vertices.emplace_back(x, y, 0.2 * std::sin(3 * x) * std::cos(2 * y));
+      const double x = -half + 2 * half * i / n, y = -half + 2 * half * j / n;
+      s.vertices.emplace_back(x, y, height(x, y));
     }
   auto id = [&](int i, int j) { return static_cast<std::uint32_t>(i * (n + 1) + j); };
   for (int i = 0; i < n; ++i)
@@ -189,6 +190,11 @@ inline Soup wavySheet(int n) {
       s.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
     }
   return s;
+}
+
+/// Open sheet z = 0.2 sin(3x) cos(2y) over [-1, 1]², n × n quads.
+inline Soup wavySheet(int n) {
+  return heightSheet(1.0, n, [](double x, double y) { return 0.2 * std::sin(3 * x) * std::cos(2 * y); });
 }
 
 /// Random points: near the surface (a surface point moved up to `near` along a random direction) and

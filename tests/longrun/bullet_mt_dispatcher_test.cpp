@@ -3,14 +3,12 @@
 // BT_THREADSAFE (btCreateDefaultTaskScheduler() returns null, btParallelFor calls the body directly), so this runs
 // the Mt classes' code paths — batched manifold creation inside the dispatch, the solver pool — on one thread; it
 // must give the same physics as the ordinary world.
+#include "plugin/bullet/test_world.h"
 #include "plugin/models.h"
-#include "unidist/bullet/plugin.h"
-#include "unidist/bullet/shapes.h"
 
 #include <BulletCollision/CollisionDispatch/btCollisionDispatcherMt.h>
 #include <BulletDynamics/Dynamics/btDiscreteDynamicsWorldMt.h>
 #include <LinearMath/btThreads.h>
-#include <btBulletDynamicsCommon.h>
 #include <gtest/gtest.h>
 
 #include <memory>
@@ -18,66 +16,41 @@
 
 namespace {
 
+using bullet_test::at;
 using test_models::Vec;
+using Rigid = std::vector<std::unique_ptr<btRigidBody>>;
 
-/// The same bodies in either kind of world: a two-footed mesh (two contact regions: the plugin's extra manifolds
-/// are created inside the dispatch), a point-cloud box on it and a NURBS ball on the floor.
-struct Bodies {
-  std::vector<std::unique_ptr<btCollisionShape>> shapes;
-  std::vector<std::unique_ptr<btDefaultMotionState>> motions;
-  std::vector<std::unique_ptr<btRigidBody>> bodies;
+/// The same bodies in either kind of world, through add(shape, mass, pose): a two-footed mesh (two contact
+/// regions: the plugin's extra manifolds are created inside the dispatch), a point-cloud box on it and a NURBS
+/// ball on the floor.
+template <class Add>
+void addBodies(Add&& add) {
+  add(std::make_unique<btStaticPlaneShape>(btVector3(0, 0, 1), 0), 0, at(0, 0, 0));
+  add(unidist::bullet::makeShape(test_models::twoBoxes(Vec(0.2, 0.3, 0.1), 1.0)), 1, at(0, 0, 0.12));
+  add(unidist::bullet::makeShape(test_models::cloudBox(Vec(1.1, 0.3, 0.1))), 1, at(0, 0, 0.31));
+  add(unidist::bullet::makeShape(test_models::nurbsSphere(0.3)), 1, at(2, 0, 0.35));
+}
 
-  btRigidBody* add(std::unique_ptr<btCollisionShape> shape, double mass, const Vec& at) {
-    btVector3 inertia(0, 0, 0);
-    if (mass > 0) shape->calculateLocalInertia(btScalar(mass), inertia);
-    motions.push_back(std::make_unique<btDefaultMotionState>(
-        btTransform(btQuaternion::getIdentity(), btVector3(btScalar(at.x()), btScalar(at.y()), btScalar(at.z())))));
-    btRigidBody::btRigidBodyConstructionInfo info(btScalar(mass), motions.back().get(), shape.get(), inertia);
-    info.m_friction = 0.6f;
-    bodies.push_back(std::make_unique<btRigidBody>(info));
-    shapes.push_back(std::move(shape));
-    return bodies.back().get();
-  }
-
-  void fill(btDiscreteDynamicsWorld& world) {
-    world.setGravity(btVector3(0, 0, btScalar(-9.81)));
-    add(std::make_unique<btStaticPlaneShape>(btVector3(0, 0, 1), 0), 0, Vec(0, 0, 0));
-    add(unidist::bullet::makeShape(test_models::twoBoxes(Vec(0.2, 0.3, 0.1), 1.0)), 1, Vec(0, 0, 0.12));
-    add(unidist::bullet::makeShape(test_models::cloudBox(Vec(1.1, 0.3, 0.1))), 1, Vec(0, 0, 0.31));
-    add(unidist::bullet::makeShape(test_models::nurbsSphere(0.3)), 1, Vec(2, 0, 0.35));
-    for (auto& b : bodies) world.addRigidBody(b.get());
-  }
-
-  void remove(btDiscreteDynamicsWorld& world) {
-    for (auto& b : bodies) world.removeRigidBody(b.get());
-  }
-
-  std::vector<btVector3> positions() const {
-    std::vector<btVector3> out;
-    for (const auto& b : bodies) out.push_back(b->getWorldTransform().getOrigin());
-    return out;
-  }
-};
+std::vector<btVector3> positions(const Rigid& bodies) {
+  std::vector<btVector3> out;
+  for (const auto& b : bodies) out.push_back(b->getWorldTransform().getOrigin());
+  return out;
+}
 
 constexpr int kSteps = 480;
 constexpr btScalar kDt = btScalar(1.0 / 240);
 
+void stepAll(btDiscreteDynamicsWorld& world) {
+  for (int i = 0; i < kSteps; ++i) world.stepSimulation(kDt, 1, kDt);
+}
+
 std::vector<btVector3> runOrdinaryWorld() {
-  btDefaultCollisionConfiguration config;
-  btCollisionDispatcher dispatcher(&config);
-  btDbvtBroadphase broadphase;
-  btSequentialImpulseConstraintSolver solver;
-  auto plugin = unidist::bullet::registerAlgorithms(&dispatcher);
-  Bodies bodies;
-  std::vector<btVector3> out;
-  {
-    btDiscreteDynamicsWorld world(&dispatcher, &broadphase, &solver, &config);
-    bodies.fill(world);
-    for (int i = 0; i < kSteps; ++i) world.stepSimulation(kDt, 1, kDt);
-    out = bodies.positions();
-    bodies.remove(world);
-  }
-  return out;
+  bullet_test::TestWorld w;
+  addBodies([&w](std::unique_ptr<btCollisionShape> shape, double mass, const btTransform& pose) {
+    w.add(std::move(shape), mass, pose);
+  });
+  stepAll(*w.world);
+  return positions(w.bodies);
 }
 
 TEST(BulletMtDispatcher, RunsThePluginLikeTheOrdinaryWorld) {
@@ -91,17 +64,30 @@ TEST(BulletMtDispatcher, RunsThePluginLikeTheOrdinaryWorld) {
   btDbvtBroadphase broadphase;
   btConstraintSolverPoolMt solverPool(2);
   auto plugin = unidist::bullet::registerAlgorithms(&dispatcher);
-  Bodies bodies;
+  // Made as bullet_test::TestWorld::add makes them, into this world; they outlive it.
+  std::vector<std::unique_ptr<btCollisionShape>> shapes;
+  std::vector<std::unique_ptr<btDefaultMotionState>> motions;
+  Rigid bodies;
   std::vector<btVector3> mt;
   int regionsHeld = 0;
   {
     btDiscreteDynamicsWorldMt world(&dispatcher, &broadphase, &solverPool, nullptr, &config);
-    bodies.fill(world);
-    for (int i = 0; i < kSteps; ++i) world.stepSimulation(kDt, 1, kDt);
-    mt = bodies.positions();
+    world.setGravity(btVector3(0, 0, btScalar(-9.81)));
+    addBodies([&](std::unique_ptr<btCollisionShape> shape, double mass, const btTransform& pose) {
+      btVector3 inertia(0, 0, 0);
+      if (mass > 0) shape->calculateLocalInertia(btScalar(mass), inertia);
+      motions.push_back(std::make_unique<btDefaultMotionState>(pose));
+      btRigidBody::btRigidBodyConstructionInfo info(btScalar(mass), motions.back().get(), shape.get(), inertia);
+      info.m_friction = btScalar(0.6);
+      bodies.push_back(std::make_unique<btRigidBody>(info));
+      shapes.push_back(std::move(shape));
+      world.addRigidBody(bodies.back().get());
+    });
+    stepAll(world);
+    mt = positions(bodies);
     for (int m = 0; m < dispatcher.getNumManifolds(); ++m)
       if (dispatcher.getManifoldByIndexInternal(m)->getNumContacts() > 0) ++regionsHeld;
-    bodies.remove(world);
+    for (auto& b : bodies) world.removeRigidBody(b.get());
   }
   EXPECT_GT(unidist::bullet::stats(*plugin).localUpdates, 0);
   // Feet on the floor (two manifolds), the cloud box on the feet (two), the ball on the floor (one).

@@ -118,13 +118,13 @@ void TrajectoryMonitor::observe(int step, const std::vector<unidist::BodyState>&
     minStackGap = std::min(minStackGap, gap);
     if ((gap <= 0 || !ordered) && stackViolationStep < 0) stackViolationStep = step;
   }
-  for (std::size_t i = 0; i < bodies.size(); ++i) {
-    const Eigen::Vector3d p = bodies[i].pose.translation();
-    if (step == bounds_.settleStep) settledPlaces_[i] = p;
-    const Eigen::Vector3d move = p - settledPlaces_[i];
-    if (step >= bounds_.settleStep)
+  if (step == bounds_.settleStep)
+    for (std::size_t i = 0; i < bodies.size(); ++i) settledPlaces_[i] = bodies[i].pose.translation();
+  if (step >= bounds_.settleStep)
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+      const Eigen::Vector3d move = bodies[i].pose.translation() - settledPlaces_[i];
       maxDriftAfterSettling[i] = std::max(maxDriftAfterSettling[i], (move - up_.dot(move) * up_).norm());
-  }
+    }
   const double e = energy(bodies);
   if (step == 0) initialEnergy = e;
   if (step == bounds_.settleStep) settledEnergy = e;

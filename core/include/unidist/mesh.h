@@ -60,6 +60,7 @@ namespace unidist {
 namespace mesh {
 struct MeshBvh;
 struct WindingData;
+struct TriangleClosest;
 }  // namespace mesh
 
 /// Voronoi feature of a triangle (v0, v1, v2) that holds a closest point.
@@ -105,6 +106,9 @@ class TriangleMesh final : public Model {
   SurfacePoint closestPoint(const Eigen::Vector3d& q_M) const override;
   /// closestPoint() plus the Voronoi feature of the triangle holding the point.
   MeshPoint closestFeature(const Eigen::Vector3d& q_M) const;
+  /// The surface point of q_M's closest point c on triangle t (mesh::closestOnTriangle's answer), signed and
+  /// given a normal as closestPoint() does: for searches that find the triangle themselves (the tracker's walk).
+  SurfacePoint surfacePointOn(const Eigen::Vector3d& q_M, int t, const mesh::TriangleClosest& c) const;
   Aabb localBounds() const override { return bounds_; }
   BoundingSphere localBoundingSphere() const override;
   bool isSolid() const override { return stats_.solid; }

@@ -157,6 +157,7 @@ class NurbsModel final : public Model {
  private:
   void checkClosed() const;
   double enclosedVolume() const;
+  std::size_t patchTreeBytes() const;  // the cached subdivision tree so far
 
   std::vector<NurbsSurface> surfaces_;
   std::vector<RationalBezierPatch> patches_;

@@ -3,6 +3,9 @@
 // setting means the same thing everywhere. docs/dial.md measures what each setting costs and gives.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
+
 namespace unidist {
 
 struct QueryOptions {
@@ -23,11 +26,18 @@ struct QueryOptions {
 /// tolerance (a negative one defers to the other), the smaller relative tolerance, the larger iteration cap.
 inline QueryOptions stricter(const QueryOptions& a, const QueryOptions& b) {
   QueryOptions s;
-  s.tolerance = (a.tolerance >= 0 && b.tolerance >= 0) ? (a.tolerance < b.tolerance ? a.tolerance : b.tolerance)
-                                                       : (a.tolerance >= 0 ? a.tolerance : b.tolerance);
-  s.relativeTolerance = a.relativeTolerance < b.relativeTolerance ? a.relativeTolerance : b.relativeTolerance;
-  s.maxIterations = a.maxIterations > b.maxIterations ? a.maxIterations : b.maxIterations;
+  s.tolerance = a.tolerance < 0 ? b.tolerance : b.tolerance < 0 ? a.tolerance : std::min(a.tolerance, b.tolerance);
+  s.relativeTolerance = std::min(a.relativeTolerance, b.relativeTolerance);
+  s.maxIterations = std::max(a.maxIterations, b.maxIterations);
   return s;
+}
+
+/// What is wrong with the dial's relativeTolerance or maxIterations (null when nothing): the checks every owner
+/// of a dial makes (their tolerance rules differ: a geom refuses 0, a query takes it as "exact").
+inline const char* invalidDialSetting(const QueryOptions& o) {
+  if (!std::isfinite(o.relativeTolerance) || o.relativeTolerance < 0) return "relative tolerance must be finite and >= 0";
+  if (o.maxIterations < 1) return "maxIterations must be >= 1";
+  return nullptr;
 }
 
 }  // namespace unidist

@@ -4,6 +4,7 @@
 #include "unidist/contact_manifold.h"
 
 #include "contacts/box_box_contacts.h"
+#include "contacts/pair_motion.h"
 #include "contacts/reduce.h"
 #include "unidist/distance.h"
 #include "unidist/primitives.h"
@@ -15,6 +16,9 @@
 
 namespace unidist {
 namespace {
+
+using contact::boundedDiagonal;
+using contact::relativeMotion;
 
 /// Tilt used to find the rest of a resting patch: large enough that the far side of a flat or circular patch
 /// is clearly the deepest point of the tilted pose, small enough that the tilted pose is still "this contact".
@@ -44,30 +48,9 @@ struct DeepenSteps {
   double slack;
 };
 
-double boundedDiagonal(const Model& m) {
-  const Aabb box = m.localBounds();
-  return box.bounded() ? box.diagonal() : std::numeric_limits<double>::infinity();
-}
-
 double defaultSimulationTolerance(const Model& a, const Model& b) {
   const double d = std::min(boundedDiagonal(a), boundedDiagonal(b));
   return std::isfinite(d) && d > 0 ? 1e-4 * d : 1e-9;
-}
-
-/// Largest displacement of any point of the moving model between two relative poses (its bounding ball moved
-/// by the change of pose): |ΔX·c| + ‖R − R0‖₂·r. For rotations ‖R − R0‖₂ = 2 sin(angle/2) = ‖R − R0‖_F / √2: no
-/// angle to extract (asked for every pair every step), and no cancellation at small angles.
-double motionBound(const Eigen::Isometry3d& X0, const Eigen::Isometry3d& X1, const BoundingSphere& s) {
-  const Eigen::Vector3d shift = X1 * s.center - X0 * s.center;
-  return shift.norm() + (X1.linear() - X0.linear()).norm() * std::sqrt(0.5) * s.radius;
-}
-
-/// How far the pair has moved relative to each other since the cache was filled, measured on whichever model
-/// is bounded and smaller (a half-space has no bounding ball).
-double relativeMotion(const Model& a, const Model& b, const Eigen::Isometry3d& X_AB0, const Eigen::Isometry3d& X_AB) {
-  const BoundingSphere sa = a.localBoundingSphere(), sb = b.localBoundingSphere();
-  if (sb.radius <= sa.radius) return motionBound(X_AB0, X_AB, sb);  // B moving in A's frame
-  return motionBound(X_AB0.inverse(), X_AB.inverse(), sa);           // A moving in B's frame
 }
 
 /// Where the two points are apart, the normal is their direction (exactly the contract's pointB − pointA =

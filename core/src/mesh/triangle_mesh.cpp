@@ -286,7 +286,12 @@ MeshPoint TriangleMesh::closestFeature(const Eigen::Vector3d& q) const {
   MeshPoint m;
   m.triangle = t;
   m.feature = c.feature;
-  SurfacePoint& s = m.surface;
+  m.surface = surfacePointOn(q, t, c);
+  return m;
+}
+
+SurfacePoint TriangleMesh::surfacePointOn(const Eigen::Vector3d& q, int t, const mesh::TriangleClosest& c) const {
+  SurfacePoint s;
   s.point = c.point;
   s.feature = t;
   s.param = {c.b1, c.b2};
@@ -295,13 +300,13 @@ MeshPoint TriangleMesh::closestFeature(const Eigen::Vector3d& q) const {
   if (!stats_.solid) {
     s.signedDistance = d;
     s.normal = prim::unitOr(gap, faceNormals_[static_cast<std::size_t>(t)]);
-    return m;
+    return s;
   }
   const Eigen::Vector3d pseudo = pseudoNormal(t, c.feature);  // zero where the feature has none
   if (!(d > 0)) {
     s.signedDistance = 0;
     s.normal = pseudo.squaredNorm() > 0 ? pseudo : faceNormals_[static_cast<std::size_t>(t)];
-    return m;
+    return s;
   }
   const Eigen::Vector3d u = prim::unitOr(gap, faceNormals_[static_cast<std::size_t>(t)]);
   const double cosine = u.dot(pseudo);
@@ -314,7 +319,7 @@ MeshPoint TriangleMesh::closestFeature(const Eigen::Vector3d& q) const {
   if (nonManifold || std::abs(cosine) < kAmbiguousCos) in = insideByWinding(q);
   s.signedDistance = in ? -d : d;
   s.normal = in ? Eigen::Vector3d(-u) : u;
-  return m;
+  return s;
 }
 
 SurfacePoint TriangleMesh::closestPoint(const Eigen::Vector3d& q) const { return closestFeature(q).surface; }

@@ -16,42 +16,49 @@
 
 namespace unidist::nurbs {
 
-/// C(n, k) for n <= 62 (degrees are at most 31).
-inline double binomial(int n, int k) {
-  double c = 1;
-  for (int i = 1; i <= k; ++i) c = c * (n - k + i) / i;
-  return c;
+/// Buffers of bernsteinDistanceBound, kept by its caller across the nodes of one query (no allocation per node).
+struct BernsteinScratch {
+  std::vector<double> A, W, binomialU, binomialV;
+  std::vector<Eigen::Vector3d> a;
+};
+
+/// C(n, k) for k = 0..n into `out`.
+inline void binomialRow(int n, std::vector<double>& out) {
+  out.assign(static_cast<std::size_t>(n + 1), 1.0);
+  for (int k = 1; k <= n; ++k) out[static_cast<std::size_t>(k)] = out[static_cast<std::size_t>(k - 1)] * (n - k + 1) / k;
 }
 
 /// Proved: |S(s,t) − q| >= this on the whole patch (rounding allowance included).
-inline double bernsteinDistanceBound(const RationalBezierPatch& patch, const Eigen::Vector3d& q) {
+inline double bernsteinDistanceBound(const RationalBezierPatch& patch, const Eigen::Vector3d& q, BernsteinScratch& w) {
   const int n = patch.degreeU, m = patch.degreeV;
-  const int rows = 2 * n + 1, cols = 2 * m + 1;
-  std::vector<double> A(static_cast<std::size_t>(rows * cols), 0.0), W(A.size(), 0.0);
-  std::vector<Eigen::Vector3d> a(patch.net.size());
+  const std::size_t cols = static_cast<std::size_t>(2 * m + 1);
+  w.A.assign(static_cast<std::size_t>(2 * n + 1) * cols, 0.0);
+  w.W.assign(w.A.size(), 0.0);
+  w.a.resize(patch.net.size());
+  binomialRow(n, w.binomialU);
+  binomialRow(m, w.binomialV);
   double magnitude = 0;
   for (std::size_t k = 0; k < patch.net.size(); ++k) {
-    a[k] = patch.net[k].head<3>() - q * patch.net[k][3];
-    magnitude = std::max(magnitude, a[k].norm() / patch.net[k][3]);
+    w.a[k] = patch.net[k].head<3>() - q * patch.net[k][3];
+    magnitude = std::max(magnitude, w.a[k].norm() / patch.net[k][3]);
   }
+  const auto index = [m](int i, int j) { return static_cast<std::size_t>(i * (m + 1) + j); };
   for (int i = 0; i <= n; ++i)
     for (int j = 0; j <= m; ++j) {
-      const double cij = binomial(n, i) * binomial(m, j);
-      const std::size_t ij = static_cast<std::size_t>(i * (m + 1) + j);
+      const double cij = w.binomialU[static_cast<std::size_t>(i)] * w.binomialV[static_cast<std::size_t>(j)];
       for (int i2 = 0; i2 <= n; ++i2)
         for (int j2 = 0; j2 <= m; ++j2) {
-          const std::size_t ij2 = static_cast<std::size_t>(i2 * (m + 1) + j2);
-          const double c = cij * binomial(n, i2) * binomial(m, j2);
-          const std::size_t kl = static_cast<std::size_t>((i + i2) * cols + (j + j2));
-          A[kl] += c * a[ij].dot(a[ij2]);
-          W[kl] += c * patch.net[ij][3] * patch.net[ij2][3];
+          const double c = cij * w.binomialU[static_cast<std::size_t>(i2)] * w.binomialV[static_cast<std::size_t>(j2)];
+          const std::size_t kl = static_cast<std::size_t>(i + i2) * cols + static_cast<std::size_t>(j + j2);
+          w.A[kl] += c * w.a[index(i, j)].dot(w.a[index(i2, j2)]);
+          w.W[kl] += c * patch.net[index(i, j)][3] * patch.net[index(i2, j2)][3];
         }
     }
   // The common factor 1 / (C(2n,k)·C(2m,l)) cancels in each ratio.
   double least = std::numeric_limits<double>::infinity();
-  for (std::size_t kl = 0; kl < A.size(); ++kl) {
-    if (!(W[kl] > 0)) return 0;  // not a positive-weight patch: no bound
-    least = std::min(least, A[kl] / W[kl]);
+  for (std::size_t kl = 0; kl < w.A.size(); ++kl) {
+    if (!(w.W[kl] > 0)) return 0;  // not a positive-weight patch: no bound
+    least = std::min(least, w.A[kl] / w.W[kl]);
   }
   // Each coefficient is a sum of (n+1)²(m+1)² products, each exact to a few ulps of magnitude².
   const double rounding = 8.0 * (n + 1) * (m + 1) * std::numeric_limits<double>::epsilon() * magnitude;

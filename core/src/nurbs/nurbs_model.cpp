@@ -191,12 +191,14 @@ std::string NurbsModel::describe() const {
   return buf;
 }
 
-std::vector<StructureReport> NurbsModel::structures() const {
-  return {{"patch-tree", true, forest_->bytes.load() + forest_->roots.size() * sizeof(nurbs::PatchNode)}};
+std::size_t NurbsModel::patchTreeBytes() const {
+  return forest_->bytes.load() + forest_->roots.size() * sizeof(nurbs::PatchNode);
 }
 
+std::vector<StructureReport> NurbsModel::structures() const { return {{"patch-tree", true, patchTreeBytes()}}; }
+
 std::size_t NurbsModel::memoryBytes() const {
-  std::size_t bytes = sizeof(*this) + forest_->bytes.load() + forest_->roots.size() * sizeof(nurbs::PatchNode);
+  std::size_t bytes = sizeof(*this) + patchTreeBytes();
   for (const NurbsSurface& s : surfaces_)
     bytes += sizeof(s) + (s.knotsU().size() + s.knotsV().size()) * sizeof(double) +
              static_cast<std::size_t>(s.countU() * s.countV()) * sizeof(Eigen::Vector4d);

@@ -20,7 +20,7 @@ class PointObjective final : public Objective {
     return std::max(0.0, (q_ - n.ball.center).norm() - n.ball.radius);
   }
   double tightLowerBound(const PatchNode& n) const override {
-    return std::max(lowerBound(n), bernsteinDistanceBound(n.net, q_));
+    return std::max(lowerBound(n), bernsteinDistanceBound(n.net, q_, scratch_));
   }
   Cone criticalDirections(const BoundingSphere& b) const override { return coneTowards(q_, b.center, b.radius); }
   void derivatives(const SurfaceDerivatives& d, Eigen::Vector2d& g, Eigen::Matrix2d& H) const override {
@@ -36,6 +36,7 @@ class PointObjective final : public Objective {
  private:
   Eigen::Vector3d q_;
   double floor_;
+  mutable BernsteinScratch scratch_;  // one objective per query and thread
 };
 
 /// −d·S: its minimiser is a support point in direction d.

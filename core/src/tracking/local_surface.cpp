@@ -37,8 +37,7 @@ class ExactSurface final : public LocalSurface {
 
 /// Triangle mesh: from the hint's triangle, move to the nearest triangle among those sharing a vertex with the
 /// current one until none is nearer (the one-ring covers every triangle the closest point can slide onto
-/// across an edge or a vertex). Signs use the feature's pseudo-normal (face normal; the two faces of an edge;
-/// the angle-weighted fan of a vertex), as the mesh's own query does.
+/// across an edge or a vertex). Signed by the mesh itself (TriangleMesh::surfacePointOn).
 class MeshSurface final : public LocalSurface {
  public:
   explicit MeshSurface(const TriangleMesh& m) : LocalSurface(m), mesh_(m) {
@@ -77,7 +76,7 @@ class MeshSurface final : public LocalSurface {
       t = next;
     }
     hint = {t, {best.b1, best.b2}};
-    return surfacePoint(t, best);
+    return mesh_.surfacePointOn(q, t, best);
   }
 
   bool hasVertexGraph() const override { return true; }
@@ -119,58 +118,6 @@ class MeshSurface final : public LocalSurface {
     const auto& tri = mesh_.triangles()[static_cast<std::size_t>(t)];
     const auto& v = mesh_.vertices();
     return mesh::closestOnTriangle(q, v[tri[0]], v[tri[1]], v[tri[2]], mesh_.faceNormal(t));
-  }
-
-  /// The triangle sharing the directed edge (a, b) with t, or −1.
-  int across(int t, std::uint32_t a, std::uint32_t b) const {
-    for (std::uint32_t k = start_[a]; k < start_[a + 1]; ++k) {
-      const auto u = static_cast<int>(fan_[k]);
-      if (u == t) continue;
-      const auto& tri = mesh_.triangles()[fan_[k]];
-      if (tri[0] == b || tri[1] == b || tri[2] == b) return u;
-    }
-    return -1;
-  }
-
-  Eigen::Vector3d pseudoNormal(int t, TriangleFeature f) const {
-    const auto& tri = mesh_.triangles()[static_cast<std::size_t>(t)];
-    const Eigen::Vector3d& n = mesh_.faceNormal(t);
-    if (f == TriangleFeature::Face) return n;
-    if (f == TriangleFeature::Edge01 || f == TriangleFeature::Edge12 || f == TriangleFeature::Edge20) {
-      const int k = static_cast<int>(f) - static_cast<int>(TriangleFeature::Edge01);
-      const int u = across(t, tri[static_cast<std::size_t>(k)], tri[static_cast<std::size_t>((k + 1) % 3)]);
-      return u < 0 ? n : Eigen::Vector3d(n + mesh_.faceNormal(u));
-    }
-    const auto corner = static_cast<std::size_t>(static_cast<int>(f) - static_cast<int>(TriangleFeature::Vertex0));
-    const std::uint32_t v = tri[corner];
-    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-    for (std::uint32_t k = start_[v]; k < start_[v + 1]; ++k) {
-      const auto& o = mesh_.triangles()[fan_[k]];
-      const std::size_t at = o[0] == v ? 0 : (o[1] == v ? 1 : 2);
-      const auto& p = mesh_.vertices();
-      const double angle = mesh::cornerAngle(p[v], p[o[(at + 1) % 3]], p[o[(at + 2) % 3]]);
-      sum += angle * mesh_.faceNormal(static_cast<int>(fan_[k]));
-    }
-    return sum;
-  }
-
-  SurfacePoint surfacePoint(int t, const mesh::TriangleClosest& c) const {
-    SurfacePoint s;
-    s.point = c.point;
-    s.feature = t;
-    s.param = {c.b1, c.b2};
-    const double d = c.gap.norm();
-    const Eigen::Vector3d& n = mesh_.faceNormal(t);
-    if (!mesh_.isSolid()) {
-      s.signedDistance = d;
-      s.normal = d > 0 ? Eigen::Vector3d(c.gap / d) : n;
-      return s;
-    }
-    const Eigen::Vector3d pseudo = pseudoNormal(t, c.feature);
-    const bool in = pseudo.dot(c.gap) < 0;
-    s.signedDistance = in ? -d : d;
-    s.normal = d > 0 ? Eigen::Vector3d((in ? -1.0 : 1.0) * c.gap / d) : Eigen::Vector3d(pseudo.normalized());
-    return s;
   }
 
   const TriangleMesh& mesh_;

@@ -2,6 +2,7 @@
 // dropping) and the penalty forces.
 #include "unidist/tracker.h"
 
+#include "contacts/pair_motion.h"
 #include "tracking/local_update.h"
 #include "unidist/contacts.h"
 
@@ -16,24 +17,8 @@ namespace {
 
 using tracking::LocalMinimum;
 using tracking::LocalUpdater;
-
-double boundedDiagonal(const Model& m) {
-  const Aabb box = m.localBounds();
-  return box.bounded() ? box.diagonal() : std::numeric_limits<double>::infinity();
-}
-
-/// Largest displacement of any point of a ball between two poses: |ΔX·c| + ‖R1 − R0‖₂·r, with ‖R1 − R0‖₂ =
-/// ‖R1 − R0‖_F/√2 for rotations (no angle to extract, no cancellation at small angles).
-double motionBound(const Eigen::Isometry3d& X0, const Eigen::Isometry3d& X1, const BoundingSphere& s) {
-  return (X1 * s.center - X0 * s.center).norm() + (X1.linear() - X0.linear()).norm() * std::sqrt(0.5) * s.radius;
-}
-
-/// Relative motion of the pair between two relative poses, measured on the smaller bounded model.
-double relativeMotion(const Model& a, const Model& b, const Eigen::Isometry3d& X_AB0, const Eigen::Isometry3d& X_AB1) {
-  const BoundingSphere sa = a.localBoundingSphere(), sb = b.localBoundingSphere();
-  const bool useB = a.type() == ModelType::Plane || (b.type() != ModelType::Plane && sb.radius <= sa.radius);
-  return useB ? motionBound(X_AB0, X_AB1, sb) : motionBound(X_AB0.inverse(), X_AB1.inverse(), sa);
-}
+using contact::boundedDiagonal;
+using contact::relativeMotion;
 
 TrackerOptions resolve(const Model& a, const Model& b, TrackerOptions o) {
   auto bad = [](const char* what) { throw InputError(std::string("Tracker: ") + what); };

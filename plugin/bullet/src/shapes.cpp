@@ -6,6 +6,7 @@
 #include "unidist/primitives.h"
 
 #include <cmath>
+#include <string>
 
 namespace unidist::bullet {
 namespace {
@@ -26,9 +27,7 @@ ModelShapeData::ModelShapeData(std::shared_ptr<const Model> model, const ShapeOp
                      ") cannot be a shape; use btStaticPlaneShape");
   if (std::isnan(options.tolerance) || std::isinf(options.tolerance))
     throw InputError("unidist Bullet shape: tolerance must be finite");
-  if (!std::isfinite(options.relativeTolerance) || options.relativeTolerance < 0)
-    throw InputError("unidist Bullet shape: relative tolerance must be finite and >= 0");
-  if (options.maxIterations < 1) throw InputError("unidist Bullet shape: maxIterations must be >= 1");
+  if (const char* why = invalidDialSetting(options)) throw InputError(std::string("unidist Bullet shape: ") + why);
 }
 
 Eigen::Vector3d ModelShapeData::inertiaDiagonal(double mass) const {

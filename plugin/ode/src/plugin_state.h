@@ -3,12 +3,11 @@
 
 #include "unidist/contact_manifold.h"
 #include "unidist/model.h"
+#include "unidist/query_options.h"
 
 #include <ode/ode.h>
 
 #include <cstdint>
-#include "unidist/query_options.h"
-
 #include <memory>
 #include <string>
 #include <utility>

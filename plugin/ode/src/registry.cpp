@@ -175,9 +175,8 @@ double tolerance(dGeomID g) { return queryOptions(g).tolerance; }
 void setQueryOptions(dGeomID g, const QueryOptions& options) {
   detail::GeomRecord* r = detail::record(g);
   if (!r) throw InputError("unidist::ode::setQueryOptions: not a unidist geom");
-  if (!std::isfinite(options.relativeTolerance) || options.relativeTolerance < 0)
-    throw InputError("unidist::ode::setQueryOptions: relative tolerance must be finite and >= 0");
-  if (options.maxIterations < 1) throw InputError("unidist::ode::setQueryOptions: maxIterations must be >= 1");
+  if (const char* why = invalidDialSetting(options))
+    throw InputError(std::string("unidist::ode::setQueryOptions: ") + why);
   setTolerance(g, options.tolerance);  // its checks and its "negative: the default"
   r->query.relativeTolerance = options.relativeTolerance;
   r->query.maxIterations = options.maxIterations;
