@@ -151,16 +151,42 @@ DistanceResult answer(detail::PairFn routine, const Model& a, const Eigen::Isome
   return r;
 }
 
+/// answer() on the models' stand-ins at the requested levels of detail, its bounds widened by their deviations
+/// so that they hold for the models themselves. The stand-ins are queried to what is left of the tolerance once
+/// the deviations are spent (to about the deviation when nothing is left: more would be wasted).
+DistanceResult answerAtDetail(detail::PairFn routine, const Model& a, const Eigen::Isometry3d& X_WA, const Model& b,
+                              const Eigen::Isometry3d& X_WB, const DistanceOptions& options) {
+  if (options.detailA == 0 && options.detailB == 0) return answer(routine, a, X_WA, b, X_WB, options);
+  if (const char* why = invalidDialSetting(options)) throw InputError(why);
+  requireValidPose(X_WA, "A");
+  requireValidPose(X_WB, "B");
+  const StandIn sa = a.atDetail(options.detailA), sb = b.atDetail(options.detailB);
+  const double deviation = sa.deviation + sb.deviation;
+  if (deviation == 0) return answer(routine, *sa.model, X_WA, *sb.model, X_WB, options);
+  if (!std::isfinite(options.tolerance)) throw InputError("tolerance must be finite");
+  const double tolerance = options.tolerance < 0 ? defaultTolerance(a, X_WA, b, X_WB) : options.tolerance;
+  DistanceOptions inner = options;
+  inner.tolerance = tolerance > 2.2 * deviation ? tolerance - 2 * deviation : std::max(tolerance, deviation);
+  DistanceResult r = answer(routine, *sa.model, X_WA, *sb.model, X_WB, inner);
+  r.lowerBound -= deviation;
+  r.upperBound += deviation;
+  if (options.compute == Compute::Overlap)
+    r.status = r.lowerBound > 0 || r.upperBound <= 0 ? Status::Certified : Status::Bounded;
+  else
+    detail::settleStatus(r, tolerance);
+  return r;
+}
+
 }  // namespace
 
 DistanceResult distance(const Model& a, const Eigen::Isometry3d& X_WA, const Model& b, const Eigen::Isometry3d& X_WB,
                         const DistanceOptions& options) {
-  return answer(&detail::dispatchPair, a, X_WA, b, X_WB, options);
+  return answerAtDetail(&detail::dispatchPair, a, X_WA, b, X_WB, options);
 }
 
 DistanceResult genericDistance(const Model& a, const Eigen::Isometry3d& X_WA, const Model& b,
                                const Eigen::Isometry3d& X_WB, const DistanceOptions& options) {
-  return answer(&detail::genericPair, a, X_WA, b, X_WB, options);
+  return answerAtDetail(&detail::genericPair, a, X_WA, b, X_WB, options);
 }
 
 }  // namespace unidist

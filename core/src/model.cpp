@@ -1,5 +1,7 @@
-// Model-independent pieces: type names, box arithmetic and the default bounding sphere.
+// Model-independent pieces: type names, box arithmetic, the default bounding sphere and level of detail.
 #include "unidist/model.h"
+
+#include "lod/stand_in_cache.h"
 
 #include <algorithm>
 #include <cmath>
@@ -75,6 +77,18 @@ BoundingSphere Model::localBoundingSphere() const {
   const double halfDiagonal = m > 0 ? m * (half / m).norm() : 0.0;  // scaled: the squares may overflow
   s.radius = halfDiagonal * (1.0 + 8.0 * kEps) + 8.0 * kEps * s.center.norm();
   return s;
+}
+
+namespace lod {
+void checkLevel(double maxDeviation) {
+  if (!std::isfinite(maxDeviation) || maxDeviation < 0)
+    throw InputError("level of detail (largest deviation) must be finite and >= 0");
+}
+}  // namespace lod
+
+StandIn Model::atDetail(double maxDeviation) const {
+  lod::checkLevel(maxDeviation);
+  return StandIn{this, 0.0};
 }
 
 }  // namespace unidist

@@ -4,16 +4,33 @@
 
 #include <string>
 
+namespace unidist {
+struct QueryOptions;
+}
+
 namespace unidist::cli {
+
+/// The query dial (unidist/query_options.h, docs/dial.md) as given to `distance` and `contacts`:
+/// --tol, --rel-tol, --max-iterations, --detail-a, --detail-b.
+struct DialArgs {
+  std::string tol, relTol, maxIterations, detailA, detailB;
+  // Whether each option was given: an empty value given on purpose ("--tol ''") is bad input, not "absent".
+  bool hasTol = false, hasRelTol = false, hasMaxIterations = false, hasDetailA = false, hasDetailB = false;
+};
+
+/// Checks every given dial option (InputError naming the option) and sets it in `options`; absent ones keep
+/// the library's defaults.
+void applyDial(const DialArgs& args, QueryOptions& options);
 
 struct DistanceArgs {
   std::string a, b;
   std::string poseA, poseB;
-  std::string tol;
+  DialArgs dial;
+  std::string compute;  ///< overlap | separation | signed-distance
   std::string inflateA, inflateB;
   std::string pd, resolution;
-  // Whether each option was given: an empty value given on purpose ("--tol ''") is bad input, not "absent".
-  bool hasPoseA = false, hasPoseB = false, hasTol = false, hasInflateA = false, hasInflateB = false;
+  // Whether each option was given: an empty value given on purpose ("--pd ''") is bad input, not "absent".
+  bool hasPoseA = false, hasPoseB = false, hasCompute = false, hasInflateA = false, hasInflateB = false;
   bool hasPd = false, hasResolution = false;
   bool json = false;
 };
@@ -28,6 +45,7 @@ struct ContactsArgs {
   std::string a, b;
   std::string poseA, poseB;
   std::string margin, maxContacts;
+  DialArgs dial;
   bool hasPoseA = false, hasPoseB = false, hasMargin = false, hasMaxContacts = false;
   bool json = false;
 };

@@ -1,5 +1,6 @@
-// `unidist contacts A B [--pose-a P] [--pose-b P] [--margin M] [--max-contacts N] [--json]`: the local minimum
-// distances within M (unidist/contacts.h, docs/contacts.md), in the conventions of docs/query-contract.md.
+// `unidist contacts A B [--pose-a P] [--pose-b P] [--margin M] [--max-contacts N] [--tol T] [--rel-tol R]
+// [--max-iterations N] [--detail-a D] [--detail-b D] [--json]`: the local minimum distances within M
+// (unidist/contacts.h, docs/contacts.md), in the conventions of docs/query-contract.md.
 #include "commands.h"
 #include "output.h"
 
@@ -25,6 +26,7 @@ std::shared_ptr<const Model> loadAs(const std::string& specOrPath, const char* w
 
 std::string runContacts(const ContactsArgs& args) {
   ContactOptions options;
+  applyDial(args.dial, options);
   if (args.hasMargin) {
     options.margin = parseNumber(args.margin, "--margin");
     if (options.margin < 0) throw InputError("--margin must be >= 0 (got " + textNumber(options.margin) + ")");

@@ -1,6 +1,8 @@
-// `unidist distance A B [--pose-a P] [--pose-b P] [--tol T] [--inflate-a R] [--inflate-b R] [--pd exact|raster]
-// [--resolution N] [--json]`: the query of docs/query-contract.md, printed as one JSON object or as a short report.
-// --pd raster reads A and B as unions of convex pieces and answers with unidist::raster (docs/raster.md).
+// `unidist distance A B [--pose-a P] [--pose-b P] [--tol T] [--rel-tol R] [--max-iterations N] [--detail-a D]
+// [--detail-b D] [--compute overlap|separation|signed-distance] [--inflate-a R] [--inflate-b R]
+// [--pd exact|raster] [--resolution N] [--json]`: the query of docs/query-contract.md, printed as one JSON object
+// or as a short report. --pd raster reads A and B as unions of convex pieces and answers with unidist::raster
+// (docs/raster.md); of the dial it takes --tol and --max-iterations.
 #include "commands.h"
 #include "output.h"
 
@@ -13,6 +15,7 @@
 #endif
 
 #include <chrono>
+#include <climits>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
@@ -25,6 +28,12 @@ double nonNegative(const std::string& text, const char* option) {
   const double v = parseNumber(text, option);
   if (v < 0) throw InputError(std::string(option) + " must be >= 0 (got " + textNumber(v) + ")");
   return v;
+}
+
+Compute parseCompute(const std::string& text) {
+  for (Compute c : {Compute::Overlap, Compute::Separation, Compute::SignedDistance})
+    if (text == toString(c)) return c;
+  throw InputError("--compute must be 'overlap', 'separation' or 'signed-distance' (got '" + text + "')");
 }
 
 Eigen::Isometry3d poseOrIdentity(bool given, const std::string& text, const char* option) {
@@ -43,6 +52,7 @@ std::shared_ptr<const Model> load(const std::string& specOrPath, const char* whi
 struct Answer {
   DistanceResult result;
   double timeUs = 0;
+  double buildUs = 0;  // what was built before the query (a level of detail's stand-ins)
   double tolerance = 0;
 };
 
@@ -51,6 +61,14 @@ Answer exactAnswer(const DistanceArgs& args, const DistanceOptions& options, con
   const std::shared_ptr<const Model> a = load(args.a, "A");
   const std::shared_ptr<const Model> b = load(args.b, "B");
   Answer answer;
+  // The stand-ins of a level of detail are built once per model and level, like any acceleration structure:
+  // their cost is build time, not query time.
+  if (options.detailA > 0 || options.detailB > 0) {
+    const auto build = std::chrono::steady_clock::now();
+    (void)a->atDetail(options.detailA);
+    (void)b->atDetail(options.detailB);
+    answer.buildUs = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - build).count();
+  }
   const auto start = std::chrono::steady_clock::now();
   answer.result = distance(*a, X_WA, *b, X_WB, options);
   answer.timeUs = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
@@ -82,6 +100,7 @@ Answer rasterAnswer(const DistanceArgs& args, const DistanceOptions& options, co
   if (args.hasInflateA || args.hasInflateB) throw InputError("--pd raster does not take --inflate-a/--inflate-b");
   raster::UnionDistanceOptions unionOptions;
   unionOptions.tolerance = options.tolerance;
+  if (args.dial.hasMaxIterations) unionOptions.maxIterations = options.maxIterations;  // its GJK cap per pair
   if (args.hasResolution) {
     const double n = parseNumber(args.resolution, "--resolution");
     if (n != std::floor(n) || n < 8 || n > 4096)
@@ -103,15 +122,37 @@ Answer rasterAnswer(const DistanceArgs& args, const DistanceOptions& options, co
 
 }  // namespace
 
+void applyDial(const DialArgs& args, QueryOptions& options) {
+  if (args.hasTol) options.tolerance = nonNegative(args.tol, "--tol");  // absent: -1 → the contract's default
+  if (args.hasRelTol) options.relativeTolerance = nonNegative(args.relTol, "--rel-tol");
+  if (args.hasMaxIterations) {
+    const double n = parseNumber(args.maxIterations, "--max-iterations");
+    if (n < 1 || n != std::floor(n) || n > INT_MAX)
+      throw InputError("--max-iterations must be a whole number >= 1 (got " + args.maxIterations + ")");
+    options.maxIterations = static_cast<int>(n);
+  }
+  if (args.hasDetailA) options.detailA = nonNegative(args.detailA, "--detail-a");
+  if (args.hasDetailB) options.detailB = nonNegative(args.detailB, "--detail-b");
+}
+
 std::string runDistance(const DistanceArgs& args) {
   const bool raster = args.hasPd && args.pd == "raster";
   if (args.hasPd && !raster && args.pd != "exact")
     throw InputError("--pd must be 'exact' or 'raster' (got '" + args.pd + "')");
   if (args.hasResolution && !raster) throw InputError("--resolution needs --pd raster");
   DistanceOptions options;
-  if (args.hasTol) options.tolerance = nonNegative(args.tol, "--tol");  // absent: -1 → the contract's default
+  applyDial(args.dial, options);
+  if (args.hasCompute) options.compute = parseCompute(args.compute);
   if (args.hasInflateA) options.inflateA = nonNegative(args.inflateA, "--inflate-a");
   if (args.hasInflateB) options.inflateB = nonNegative(args.inflateB, "--inflate-b");
+  if (raster) {  // what the raster path does not do is refused, not ignored; the defaults' values are accepted
+    if (options.compute != Compute::SignedDistance)
+      throw InputError(std::string("--compute ") + toString(options.compute) +
+                       " needs --pd exact (--pd raster computes the signed distance)");
+    if (options.detailA > 0 || options.detailB > 0)
+      throw InputError("--pd raster does not take --detail-a/--detail-b (its convex pieces are used exactly)");
+    if (options.relativeTolerance > 0) throw InputError("--pd raster does not take --rel-tol");
+  }
   const Eigen::Isometry3d X_WA = poseOrIdentity(args.hasPoseA, args.poseA, "--pose-a");
   const Eigen::Isometry3d X_WB = poseOrIdentity(args.hasPoseB, args.poseB, "--pose-b");
 #ifdef UNIDIST_HAVE_RASTER
@@ -124,7 +165,8 @@ std::string runDistance(const DistanceArgs& args) {
 #endif
   const DistanceResult& r = answer.result;
   const double timeUs = answer.timeUs;
-  const double buildUs = 0;  // acceleration structures are built inside the timed query, on first need
+  // Acceleration structures are built inside the timed query, on first need; a level of detail's stand-ins before.
+  const double buildUs = answer.buildUs;
 
   if (!std::isfinite(r.distance) || !r.pointA.allFinite() || !r.pointB.allFinite() || !r.normal.allFinite())
     throw std::runtime_error(std::string("the query returned a non-finite answer (method ") + r.method + ")");

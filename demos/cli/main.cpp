@@ -29,6 +29,37 @@ int fail(const std::string& message) {
   return kExitBadInput;
 }
 
+/// The dial's options of one subcommand (unidist/query_options.h), to learn afterwards which were given.
+struct DialOptions {
+  CLI::Option *tol, *relTol, *maxIterations, *detailA, *detailB;
+};
+
+DialOptions addDialOptions(CLI::App* cmd, unidist::cli::DialArgs& dial) {
+  DialOptions o;
+  o.tol = cmd->add_option(
+      "--tol", dial.tol,
+      "Absolute accuracy T >= 0 (default: 1e-9 x the larger bounding-box diagonal; 0: as exact as double allows)");
+  o.relTol = cmd->add_option("--rel-tol", dial.relTol,
+                             "Accuracy relative to the distance R >= 0: far pairs may be answered more coarsely "
+                             "(default 0: off)");
+  o.maxIterations = cmd->add_option("--max-iterations", dial.maxIterations,
+                                    "Cap N >= 1 on the work of iterative methods; a capped answer keeps honest "
+                                    "bounds (default 100000)");
+  o.detailA = cmd->add_option("--detail-a", dial.detailA,
+                              "Level of detail of A: largest deviation D >= 0 of a cheaper stand-in (NURBS "
+                              "tessellation, decimated cloud) answered in its place (default 0: exact)");
+  o.detailB = cmd->add_option("--detail-b", dial.detailB, "Level of detail of B (as --detail-a)");
+  return o;
+}
+
+void recordDial(const DialOptions& o, unidist::cli::DialArgs& dial) {
+  dial.hasTol = o.tol->count() > 0;
+  dial.hasRelTol = o.relTol->count() > 0;
+  dial.hasMaxIterations = o.maxIterations->count() > 0;
+  dial.hasDetailA = o.detailA->count() > 0;
+  dial.hasDetailB = o.detailB->count() > 0;
+}
+
 int run(int argc, char** argv) {
   using unidist::cli::DistanceArgs;
   using unidist::cli::InfoArgs;
@@ -52,9 +83,11 @@ int run(int argc, char** argv) {
       distCmd->add_option("--pose-a", dist.poseA, "Pose of A: \"tx ty tz qw qx qy qz\" (default: identity)");
   CLI::Option* poseB =
       distCmd->add_option("--pose-b", dist.poseB, "Pose of B: \"tx ty tz qw qx qy qz\" (default: identity)");
-  CLI::Option* tol = distCmd->add_option(
-      "--tol", dist.tol,
-      "Absolute accuracy T >= 0 (default: 1e-9 x the larger bounding-box diagonal; 0: as exact as double allows)");
+  const DialOptions distDial = addDialOptions(distCmd, dist.dial);
+  CLI::Option* compute = distCmd->add_option(
+      "--compute", dist.compute,
+      "What to compute: overlap (stop once overlap or separation is proved), separation (no penetration depth) "
+      "or signed-distance (default)");
   CLI::Option* inflateA = distCmd->add_option("--inflate-a", dist.inflateA, "Grow A by a ball of radius R >= 0");
   CLI::Option* inflateB = distCmd->add_option("--inflate-b", dist.inflateB, "Grow B by a ball of radius R >= 0");
   CLI::Option* pd = distCmd->add_option(
@@ -83,6 +116,7 @@ int run(int argc, char** argv) {
       contCmd->add_option("--margin", cont.margin, "Report local minima with distance <= M >= 0 (default 0)");
   CLI::Option* maxContacts =
       contCmd->add_option("--max-contacts", cont.maxContacts, "At most N contacts, deepest first (default 0: all)");
+  const DialOptions contDial = addDialOptions(contCmd, cont.dial);
   contCmd->add_flag("--json", cont.json, "Print one JSON object");
 
   unidist::cli::SimArgs sim;
@@ -133,7 +167,8 @@ int run(int argc, char** argv) {
 
   dist.hasPoseA = poseA->count() > 0;
   dist.hasPoseB = poseB->count() > 0;
-  dist.hasTol = tol->count() > 0;
+  recordDial(distDial, dist.dial);
+  dist.hasCompute = compute->count() > 0;
   dist.hasInflateA = inflateA->count() > 0;
   dist.hasInflateB = inflateB->count() > 0;
   dist.hasPd = pd->count() > 0;
@@ -142,6 +177,7 @@ int run(int argc, char** argv) {
   cont.hasPoseB = contPoseB->count() > 0;
   cont.hasMargin = margin->count() > 0;
   cont.hasMaxContacts = maxContacts->count() > 0;
+  recordDial(contDial, cont.dial);
   sim.hasSteps = simSteps->count() > 0;
   sim.hasRecordEvery = recordEvery->count() > 0;
   sim.hasRender = simRender->count() > 0;

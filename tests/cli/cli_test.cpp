@@ -67,8 +67,12 @@ TEST(Cli, HelpExitsZero) {
     EXPECT_NE(r.out.find(word), std::string::npos) << describe(args, r);
   }
   const Outcome d = run({"distance", "--help"});
-  for (const char* opt : {"--pose-a", "--pose-b", "--tol", "--inflate-a", "--inflate-b", "--json"})
+  for (const char* opt : {"--pose-a", "--pose-b", "--tol", "--rel-tol", "--max-iterations", "--detail-a", "--detail-b",
+                          "--compute", "--inflate-a", "--inflate-b", "--json"})
     EXPECT_NE(d.out.find(opt), std::string::npos) << opt;
+  const Outcome c = run({"contacts", "--help"});
+  for (const char* opt : {"--margin", "--tol", "--rel-tol", "--max-iterations", "--detail-a", "--detail-b"})
+    EXPECT_NE(c.out.find(opt), std::string::npos) << opt;
 }
 
 TEST(Cli, VersionExitsZero) {
@@ -201,6 +205,107 @@ TEST(CliDistance, HumanReadableReport) {
   EXPECT_EQ(r.out.find('{'), std::string::npos) << "not JSON without --json";
 }
 
+// ---------------------------------------------------------------- the dial: --compute, --rel-tol, --max-iterations,
+// --detail-a/-b (unidist/query_options.h). Only what the contract guarantees is asserted: proved bounds hold.
+
+/// The solid NURBS ball of radius 150 about the origin (an exact rational sphere), found from this file.
+const std::string kNurbsBall =
+    (std::filesystem::path(__FILE__).parent_path() / "../../demos/scenes/ball_r150.unurbs.json").string();
+
+/// lower_bound <= truth <= upper_bound (a null bound is infinite) and lower_bound <= distance <= upper_bound.
+void expectBoundsContain(const json& j, double truth, double slack = 1e-9) {
+  ASSERT_TRUE(j.contains("distance")) << j.dump();
+  const double d = j["distance"].get<double>();
+  if (j["lower_bound"].is_number()) {
+    EXPECT_LE(j["lower_bound"].get<double>(), truth + slack) << j.dump();
+    EXPECT_LE(j["lower_bound"].get<double>(), d) << j.dump();
+  }
+  if (j["upper_bound"].is_number()) {
+    EXPECT_GE(j["upper_bound"].get<double>(), truth - slack) << j.dump();
+    EXPECT_GE(j["upper_bound"].get<double>(), d) << j.dump();
+  }
+}
+
+const std::vector<std::string> kOverlappingSpheres = {"distance", "sphere:r=1", "sphere:r=1", "--pose-b",
+                                                      "0 0 1.5 1 0 0 0"};  // -0.5
+const std::vector<std::string> kSeparatedSpheres = {"distance", "sphere:r=1", "sphere:r=0.5", "--pose-b",
+                                                    "3 4 0 1 0 0 0"};  // 3.5
+
+std::vector<std::string> with(std::vector<std::string> args, const std::vector<std::string>& more) {
+  args.insert(args.end(), more.begin(), more.end());
+  return args;
+}
+
+TEST(CliDial, ComputeOverlapGivesTheProvedVerdict) {
+  const json in = queryJson(with(kOverlappingSpheres, {"--compute", "overlap"}));
+  EXPECT_LE(in.at("distance").get<double>(), 0) << in.dump();
+  EXPECT_EQ(in.at("status"), "certified") << in.dump();
+  expectBoundsContain(in, -0.5);
+
+  const json apart = queryJson(with(kSeparatedSpheres, {"--compute", "overlap"}));
+  ASSERT_TRUE(apart.at("lower_bound").is_number()) << apart.dump();
+  EXPECT_GT(apart.at("lower_bound").get<double>(), 0) << apart.dump();
+  EXPECT_GT(apart.at("distance").get<double>(), 0) << apart.dump();
+  expectBoundsContain(apart, 3.5);
+}
+
+TEST(CliDial, ComputeSeparationMeasuresTheGapAndProvesAnOverlap) {
+  const json apart = queryJson(with(kSeparatedSpheres, {"--compute", "separation"}));
+  EXPECT_NEAR(apart.at("distance").get<double>(), 3.5, 1e-9) << apart.dump();
+  expectBoundsContain(apart, 3.5);
+
+  const json in = queryJson(with(kOverlappingSpheres, {"--compute", "separation"}));
+  ASSERT_TRUE(in.at("upper_bound").is_number()) << in.dump();
+  EXPECT_LE(in.at("upper_bound").get<double>(), 0) << in.dump();
+  expectBoundsContain(in, -0.5);
+
+  // The default, spelt out, is the full query.
+  const json full = queryJson(with(kOverlappingSpheres, {"--compute", "signed-distance"}));
+  EXPECT_NEAR(full.at("distance").get<double>(), -0.5, 1e-9) << full.dump();
+}
+
+TEST(CliDial, RelativeToleranceKeepsProvedBounds) {
+  // Two unit spheres 100 apart: at --rel-tol 0.1 the answer may be up to 10 off, but its bounds still hold.
+  const json j = queryJson({"distance", "sphere:r=1", "sphere:r=1", "--pose-b", "102 0 0 1 0 0 0", "--rel-tol",
+                            "0.1", "--tol", "0"});
+  expectBoundsContain(j, 100);
+  EXPECT_NEAR(j.at("distance").get<double>(), 100, 10 + 1e-9) << j.dump();
+}
+
+TEST(CliDial, MaxIterationsKeepsHonestBounds) {
+  for (const char* n : {"1", "3", "100000"}) {
+    SCOPED_TRACE(n);
+    expectBoundsContain(queryJson({"distance", "sphere:r=0.5", "box:hx=1,hy=2,hz=3", "--pose-a", "0 0 5 1 0 0 0",
+                                   "--pose-b", "0 0 0 0.7071067811865476 0.7071067811865476 0 0",
+                                   "--max-iterations", n}),
+                        2.5);
+    expectBoundsContain(queryJson({"distance", kNurbsBall, "sphere:r=50", "--pose-b", "300 0 0 1 0 0 0",
+                                   "--max-iterations", n}),
+                        100);
+  }
+}
+
+TEST(CliDial, DetailKeepsBoundsOnTheModelsThemselves) {
+  // The NURBS ball (r = 150) against a sphere of radius 50 apart by 100 and overlapping by 30, A or B coarsened
+  // (one case at 0.01: its stand-in takes seconds to build).
+  struct Case {
+    std::vector<std::string> args;
+    double truth;
+  };
+  const std::vector<Case> cases = {
+      {{"distance", kNurbsBall, "sphere:r=50", "--pose-b", "300 0 0 1 0 0 0", "--detail-a", "0.01"}, 100},
+      {{"distance", kNurbsBall, "sphere:r=50", "--pose-b", "300 0 0 1 0 0 0", "--detail-a", "1"}, 100},
+      {{"distance", kNurbsBall, "sphere:r=50", "--pose-b", "170 0 0 1 0 0 0", "--detail-a", "0.1"}, -30},
+      {{"distance", "sphere:r=50", kNurbsBall, "--pose-a", "0 -300 0 1 0 0 0", "--detail-b", "0.1"}, 100},
+      {{"distance", "sphere:r=50", kNurbsBall, "--pose-a", "0 0 199 1 0 0 0", "--detail-b", "0.5", "--detail-a",
+        "0.01"}, -1},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.args.back());
+    expectBoundsContain(queryJson(c.args), c.truth);
+  }
+}
+
 // ---------------------------------------------------------------- info
 
 TEST(CliInfo, JsonDescribesTheModel) {
@@ -288,6 +393,26 @@ std::vector<BadCase> badCases() {
       {"Inf --tol", {"distance", S, B, "--tol", "inf"}, "--tol"},
       {"negative --tol", {"distance", S, B, "--tol", "-1e-6"}, "--tol must be >= 0"},
       {"junk --tol", {"distance", S, B, "--tol", "1e-6x"}, "--tol"},
+      {"unknown --compute", {"distance", S, B, "--compute", "fast"}, "--compute must be 'overlap', 'separation'"},
+      {"empty --compute", {"distance", S, B, "--compute", ""}, "--compute"},
+      {"--compute case", {"distance", S, B, "--compute", "Overlap"}, "'Overlap'"},
+      {"negative --rel-tol", {"distance", S, B, "--rel-tol", "-1"}, "--rel-tol must be >= 0"},
+      {"NaN --rel-tol", {"distance", S, B, "--rel-tol", "nan"}, "--rel-tol"},
+      {"Inf --rel-tol", {"distance", S, B, "--rel-tol", "inf"}, "--rel-tol"},
+      {"zero --max-iterations", {"distance", S, B, "--max-iterations", "0"}, "--max-iterations must be"},
+      {"negative --max-iterations", {"distance", S, B, "--max-iterations", "-5"}, "--max-iterations"},
+      {"fractional --max-iterations", {"distance", S, B, "--max-iterations", "2.5"}, "--max-iterations"},
+      {"huge --max-iterations", {"distance", S, B, "--max-iterations", "1e10"}, "--max-iterations"},
+      {"junk --max-iterations", {"distance", S, B, "--max-iterations", "ten"}, "--max-iterations"},
+      {"NaN --detail-a", {"distance", S, B, "--detail-a", "nan"}, "--detail-a"},
+      {"negative --detail-a", {"distance", S, B, "--detail-a", "-0.01"}, "--detail-a must be >= 0"},
+      {"Inf --detail-b", {"distance", S, B, "--detail-b", "inf"}, "--detail-b"},
+      {"negative --detail-b", {"distance", S, B, "--detail-b=-1"}, "--detail-b must be >= 0"},
+      {"empty --detail-b", {"distance", S, B, "--detail-b", ""}, "--detail-b"},
+      {"--compute with --pd raster", {"distance", B, B, "--pd", "raster", "--compute", "overlap"},
+       "--compute overlap needs --pd exact"},
+      {"--detail-a with --pd raster", {"distance", B, B, "--pd", "raster", "--detail-a", "0.1"}, "--detail-a"},
+      {"--rel-tol with --pd raster", {"distance", B, B, "--pd", "raster", "--rel-tol", "0.1"}, "--rel-tol"},
       {"negative --inflate-a", {"distance", S, B, "--inflate-a", "-0.5"}, "--inflate-a must be >= 0"},
       {"negative --inflate-b", {"distance", S, B, "--inflate-b=-1"}, "--inflate-b must be >= 0"},
       {"NaN --inflate-b", {"distance", S, B, "--inflate-b", "nan"}, "--inflate-b"},

@@ -8,6 +8,7 @@
 
 #include "run_unidist.h"
 
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -79,6 +80,37 @@ TEST(CliContacts, MeshFileAgainstPlane) {
   EXPECT_NEAR(vec(cs[0].at("normal")).z(), 1, 1e-12);  // the mesh (B) must move up
 }
 
+TEST(CliContacts, DialOptions) {
+  // Unit spheres overlapping by 0.1: one contact at -0.1 whatever the (valid) dial.
+  const std::vector<std::string> base = {"contacts", "sphere:r=1", "sphere:r=1", "--pose-b", "1.9 0 0 1 0 0 0",
+                                         "--json"};
+  const std::vector<std::vector<std::string>> dials = {
+      {"--tol", "1e-12"}, {"--tol", "0"}, {"--rel-tol", "0.1"}, {"--max-iterations", "1000"},
+      {"--detail-a", "0", "--detail-b", "0"}, {"--tol", "1e-6", "--rel-tol", "0", "--max-iterations", "1"}};
+  for (const auto& dial : dials) {
+    SCOPED_TRACE(dial.front() + " " + dial.back());
+    std::vector<std::string> args = base;
+    args.insert(args.end(), dial.begin(), dial.end());
+    const json cs = contactsOf(args);
+    ASSERT_EQ(cs.size(), 1u);
+    EXPECT_NEAR(cs[0].at("distance").get<double>(), -0.1, 1e-6);
+  }
+}
+
+TEST(CliContacts, DetailOfANurbsBall) {
+  // The NURBS ball (r = 150, an exact rational sphere) 0.5 from a sphere of radius 50; at --detail-a D the
+  // contact is on a stand-in within D of the ball, so its distance is within D of 0.5.
+  const std::string ball =
+      (std::filesystem::path(__FILE__).parent_path() / "../../demos/scenes/ball_r150.unurbs.json").string();
+  for (const char* detail : {"0", "0.1", "1"}) {
+    SCOPED_TRACE(detail);
+    const json cs = contactsOf({"contacts", ball, "sphere:r=50", "--pose-b", "200.5 0 0 1 0 0 0", "--margin", "1",
+                                "--detail-a", detail, "--json"});
+    ASSERT_GE(cs.size(), 1u);
+    EXPECT_NEAR(cs[0].at("distance").get<double>(), 0.5, std::stod(detail) + 1e-6);
+  }
+}
+
 TEST(CliContacts, BadInput) {
   const std::vector<std::vector<std::string>> cases = {
       {"contacts", "sphere:r=1"},
@@ -89,6 +121,14 @@ TEST(CliContacts, BadInput) {
       {"contacts", "sphere:r=1", "sphere:r=1", "--max-contacts", "2.5"},
       {"contacts", "sphere:r=1", "sphere:r=1", "--max-contacts", "-1"},
       {"contacts", "sphere:r=1", "sphere:r=1", "--pose-a", "1 2 3"},
+      {"contacts", "sphere:r=1", "sphere:r=1", "--tol", "-1"},
+      {"contacts", "sphere:r=1", "sphere:r=1", "--tol", "nan"},
+      {"contacts", "sphere:r=1", "sphere:r=1", "--rel-tol", "-1"},
+      {"contacts", "sphere:r=1", "sphere:r=1", "--max-iterations", "0"},
+      {"contacts", "sphere:r=1", "sphere:r=1", "--max-iterations", "1.5"},
+      {"contacts", "sphere:r=1", "sphere:r=1", "--detail-a", "nan"},
+      {"contacts", "sphere:r=1", "sphere:r=1", "--detail-b", "-0.1"},
+      {"contacts", "sphere:r=1", "sphere:r=1", "--compute", "overlap"},
       {"contacts", "sphere:r=1", "/nonexistent/model.obj"},
       {"contacts", "plane:nx=0,ny=0,nz=1,d=0", "plane:nx=0,ny=0,nz=1,d=1"},
   };

@@ -31,7 +31,7 @@ struct DistanceOptions : QueryOptions {
 
 struct DistanceResult {
   double distance = 0;                                  ///< signed: < 0 is −(minimum translation distance)
-  Eigen::Vector3d pointA = Eigen::Vector3d::Zero();     ///< world, on A's surface
+  Eigen::Vector3d pointA = Eigen::Vector3d::Zero();     ///< world, on A's surface (its stand-in's at a level of detail)
   Eigen::Vector3d pointB = Eigen::Vector3d::Zero();     ///< world, on B's surface; pointB − pointA = distance · normal
   Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();    ///< unit; A toward B, or the way B moves to separate
   double lowerBound = -std::numeric_limits<double>::infinity();  ///< proved: lowerBound <= true distance

@@ -28,6 +28,15 @@ struct SurfaceCell {
 };
 
 /// One acceleration structure a model builds on first need, once (for `unidist info`, tests and benchmarks).
+/// A model at a level of detail (Model::atDetail): the model answered in its place and how far its surface is
+/// proved to lie from the original's. `model` is never null and lives as long as the original model.
+class Model;
+
+struct StandIn {
+  const Model* model = nullptr;
+  double deviation = 0;  ///< proved Hausdorff distance between the two surfaces (0: the model itself)
+};
+
 struct StructureReport {
   std::string name;       ///< e.g. "bvh", "winding", "point-tree", "patch-tree", "contact-mesh"
   bool built = false;
@@ -71,6 +80,13 @@ class Model {
   virtual std::vector<StructureReport> structures() const { return {}; }
   /// Builds every lazily built structure now: before a real-time loop, or to see what they cost.
   virtual void buildStructures() const {}
+
+  /// The model at a level of detail: a cheaper stand-in whose surface is proved to lie within `maxDeviation`
+  /// (Hausdorff distance, model length) of this one's — a NURBS model's tessellation, a point cloud's
+  /// decimation (docs/dial.md, "Level of detail") — built on the first request for that level, once, and kept
+  /// with the model (thread-safe). The model itself (deviation 0) for 0, for models with no coarser form, and
+  /// where no stand-in within the level can be built. InputError for a negative or non-finite maxDeviation.
+  virtual StandIn atDetail(double maxDeviation) const;
 };
 
 }  // namespace unidist

@@ -58,6 +58,9 @@ constexpr int kNurbsSearchBudget = 20000;
 namespace nurbs {
 struct PatchForest;
 }
+namespace lod {
+class StandInCache;
+}
 
 /// A point of a surface with its first and second partial derivatives.
 struct SurfaceDerivatives {
@@ -140,8 +143,14 @@ class NurbsModel final : public Model {
   std::string describe() const override;
   std::size_t memoryBytes() const override;
   /// "patch-tree": the roots exist from construction (they bound the model); nodes below are refined, and kept
-  /// down to a fixed depth, only where queries look.
+  /// down to a fixed depth, only where queries look. "level-of-detail": the stand-ins asked for (atDetail).
   std::vector<StructureReport> structures() const override;
+  /// A triangle mesh proved within maxDeviation of the surfaces (a solid's is a closed mesh): a tensor grid per
+  /// surface in its NURBS parameters, refined until a Bernstein bound on every cell's distance to its two
+  /// triangles meets the level (docs/dial.md, "Level of detail"). The model itself when the level is finer
+  /// than 1e-9 × its size, needs more than 4 million triangles, or a solid's surfaces meet along edges cut
+  /// differently (the mesh would not be closed).
+  StandIn atDetail(double maxDeviation) const override;
 
   const std::vector<NurbsSurface>& surfaces() const { return surfaces_; }
   const std::vector<RationalBezierPatch>& patches() const { return patches_; }
@@ -166,6 +175,7 @@ class NurbsModel final : public Model {
   int orientation_ = 1;
   Aabb bounds_;
   std::unique_ptr<nurbs::PatchForest> forest_;
+  std::unique_ptr<lod::StandInCache> standIns_;
 };
 
 }  // namespace unidist

@@ -27,6 +27,9 @@ namespace unidist {
 namespace cloud {
 struct PointTree;
 }
+namespace lod {
+class StandInCache;
+}
 
 class PointCloud final : public Model {
  public:
@@ -45,9 +48,13 @@ class PointCloud final : public Model {
   void splitCell(const SurfaceCell& cell, std::vector<SurfaceCell>& out) const override;
   std::string describe() const override;
   std::size_t memoryBytes() const override;
-  /// "point-tree" (every query).
+  /// "point-tree" (every query); "level-of-detail": the stand-ins asked for (atDetail).
   std::vector<StructureReport> structures() const override;
   void buildStructures() const override { tree(); }
+  /// One point per cell of a voxel grid of side maxDeviation/√3 (the first in input order, with its normal);
+  /// deviation: the farthest any dropped point lies from its cell's kept one. The cloud itself when nothing
+  /// would be dropped.
+  StandIn atDetail(double maxDeviation) const override;
 
   const std::vector<Eigen::Vector3d>& points() const { return points_; }
   /// Empty when the cloud has no normals; else one unit (or zero: none) normal per point.
@@ -68,6 +75,7 @@ class PointCloud final : public Model {
   mutable std::unique_ptr<cloud::PointTree> tree_;
   mutable std::atomic<const cloud::PointTree*> treeReady_{nullptr};
   mutable std::atomic<int> treeBuilds_{0};
+  std::unique_ptr<lod::StandInCache> standIns_;
 };
 
 }  // namespace unidist

@@ -20,15 +20,34 @@ struct QueryOptions {
   /// Cap on the work of iterative methods (GJK/EPA iterations, alternating steps, branch-and-bound rounds); the
   /// answer reports honest bounds (status Bounded) when the cap stops it.
   int maxIterations = 100000;
+  /// Level of detail of model A / B: the largest deviation (Hausdorff distance, model length; 0 = exact) the
+  /// query accepts between a model and a cheaper stand-in answered in its place (Model::atDetail: a NURBS
+  /// tessellation, a decimated point cloud). Results are about the stand-ins (points on their surfaces,
+  /// features theirs); distance() widens its proved bounds by the deviations actually used, so they still hold
+  /// for the models themselves. An engine shape's own dial (Bullet ShapeOptions, ODE setQueryOptions) uses
+  /// detailA for that shape; its detailB is ignored.
+  double detailA = 0, detailB = 0;
 };
 
 /// The stricter of two dials, for a pair whose models carry their own (the engine plugins): the smaller explicit
-/// tolerance (a negative one defers to the other), the smaller relative tolerance, the larger iteration cap.
+/// tolerance (a negative one defers to the other), the smaller relative tolerance, the larger iteration cap;
+/// each model keeps its own level of detail (a's detailA as detailA, b's detailA as detailB).
 inline QueryOptions stricter(const QueryOptions& a, const QueryOptions& b) {
   QueryOptions s;
+  s.detailA = a.detailA;
+  s.detailB = b.detailA;
   s.tolerance = a.tolerance < 0 ? b.tolerance : b.tolerance < 0 ? a.tolerance : std::min(a.tolerance, b.tolerance);
   s.relativeTolerance = std::min(a.relativeTolerance, b.relativeTolerance);
   s.maxIterations = std::max(a.maxIterations, b.maxIterations);
+  return s;
+}
+
+/// The dial of an engine pair: its first model's dial `a` and its second's `b`, or null for a model without one
+/// (an engine's own shape: exact, default dial).
+inline QueryOptions dialOfPair(const QueryOptions& a, const QueryOptions* b) {
+  if (b) return stricter(a, *b);
+  QueryOptions s = a;
+  s.detailB = 0;
   return s;
 }
 
@@ -37,6 +56,8 @@ inline QueryOptions stricter(const QueryOptions& a, const QueryOptions& b) {
 inline const char* invalidDialSetting(const QueryOptions& o) {
   if (!std::isfinite(o.relativeTolerance) || o.relativeTolerance < 0) return "relative tolerance must be finite and >= 0";
   if (o.maxIterations < 1) return "maxIterations must be >= 1";
+  for (double d : {o.detailA, o.detailB})
+    if (!std::isfinite(d) || d < 0) return "level of detail (largest deviation) must be finite and >= 0";
   return nullptr;
 }
 

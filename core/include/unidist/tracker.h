@@ -66,7 +66,8 @@ enum class GlobalPassMode {
 };
 
 /// The dial (QueryOptions): tolerance < 0 → 1e-6 × the smaller bounding-box diagonal of the pair (for the
-/// local updates and the global passes alike; haptics needs no more), 0 → 1e-12 × that diagonal.
+/// local updates and the global passes alike; haptics needs no more), 0 → 1e-12 × that diagonal. detailA/B: the
+/// tracker follows the models' stand-ins at those levels of detail (Model::atDetail), chosen once at construction.
 struct TrackerOptions : QueryOptions {
   double cutoff = -1;           ///< report minima with distance <= cutoff; < 0 → 2% of the smaller diagonal
   double guard = -1;            ///< relative motion allowed between global passes; < 0 → cutoff

@@ -3,6 +3,7 @@
 #include "unidist/point_cloud.h"
 
 #include "cloud/point_support.h"
+#include "lod/decimate.h"
 #include "cloud/point_tree.h"
 #include "primitives/common.h"
 
@@ -15,7 +16,7 @@ namespace unidist {
 PointCloud::~PointCloud() = default;
 
 PointCloud::PointCloud(std::vector<Eigen::Vector3d> points, std::vector<Eigen::Vector3d> normals)
-    : points_(std::move(points)), normals_(std::move(normals)) {
+    : points_(std::move(points)), normals_(std::move(normals)), standIns_(std::make_unique<lod::StandInCache>()) {
   if (points_.empty()) throw InputError("point cloud: no points");
   if (points_.size() >= std::numeric_limits<std::uint32_t>::max())
     throw InputError("point cloud: too many points (" + std::to_string(points_.size()) + ")");
@@ -114,14 +115,20 @@ std::string PointCloud::describe() const {
 
 std::vector<StructureReport> PointCloud::structures() const {
   const cloud::PointTree* t = treeReady_.load(std::memory_order_acquire);
-  return {{"point-tree", t != nullptr, t ? sizeof(*t) + t->memoryBytes() : 0}};
+  return {{"point-tree", t != nullptr, t ? sizeof(*t) + t->memoryBytes() : 0}, standIns_->report()};
+}
+
+StandIn PointCloud::atDetail(double maxDeviation) const {
+  lod::checkLevel(maxDeviation);
+  if (maxDeviation == 0) return StandIn{this, 0.0};
+  return standIns_->get(*this, maxDeviation, [this](double level) { return lod::decimate(*this, level); });
 }
 
 std::size_t PointCloud::memoryBytes() const {
   std::size_t bytes = sizeof(*this) + points_.capacity() * sizeof(Eigen::Vector3d) +
                       normals_.capacity() * sizeof(Eigen::Vector3d);
   if (const cloud::PointTree* t = treeReady_.load(std::memory_order_acquire)) bytes += sizeof(*t) + t->memoryBytes();
-  return bytes;
+  return bytes + standIns_->report().bytes;
 }
 
 }  // namespace unidist

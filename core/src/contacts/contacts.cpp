@@ -87,10 +87,9 @@ void pointQueries(const Working& w, const Eigen::Isometry3d& X_WM, const Model& 
   }
 }
 
-}  // namespace
 
-std::vector<Contact> contacts(const Model& a, const Eigen::Isometry3d& X_WA, const Model& b,
-                              const Eigen::Isometry3d& X_WB, const ContactOptions& options) {
+std::vector<Contact> contactsOfModels(const Model& a, const Eigen::Isometry3d& X_WA, const Model& b,
+                                      const Eigen::Isometry3d& X_WB, const ContactOptions& options) {
   if (!std::isfinite(options.margin) || options.margin < 0)
     throw InputError("contacts: margin must be finite and >= 0");
   if (options.maxContacts < 0) throw InputError("contacts: maxContacts must be >= 0");
@@ -133,6 +132,17 @@ std::vector<Contact> contacts(const Model& a, const Eigen::Isometry3d& X_WA, con
   contact::mergeDuplicates(out, 16 * std::max(tol, dirEps));
   if (options.maxContacts > 0) contact::reduceContacts(out, options.maxContacts);
   return out;
+}
+
+}  // namespace
+
+std::vector<Contact> contacts(const Model& a, const Eigen::Isometry3d& X_WA, const Model& b,
+                              const Eigen::Isometry3d& X_WB, const ContactOptions& options) {
+  if (const char* why = invalidDialSetting(options)) throw InputError(std::string("contacts: ") + why);
+  // At a level of detail the contacts are the stand-ins' (their points, features and distances).
+  ContactOptions exact = options;
+  exact.detailA = exact.detailB = 0;
+  return contactsOfModels(*a.atDetail(options.detailA).model, X_WA, *b.atDetail(options.detailB).model, X_WB, exact);
 }
 
 }  // namespace unidist

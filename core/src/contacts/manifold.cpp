@@ -318,6 +318,7 @@ void checkOptions(const ManifoldOptions& o) {
   if (o.maxContacts <= 0) throw InputError("manifoldContacts: maxContacts must be > 0");
   if (std::isnan(o.tolerance) || o.tolerance == std::numeric_limits<double>::infinity())
     throw InputError("manifoldContacts: tolerance must be finite");
+  if (const char* why = invalidDialSetting(o)) throw InputError(std::string("manifoldContacts: ") + why);
 }
 
 /// The contacts at one pose of A (the true one, or A lifted off B), through the cache when it holds.
@@ -359,12 +360,10 @@ std::vector<Contact> contactsAt(const Model& a, const Eigen::Isometry3d& X_WA, c
   return out;
 }
 
-}  // namespace
 
-std::vector<Contact> manifoldContacts(const Model& a, const Eigen::Isometry3d& X_WA, const Model& b,
+std::vector<Contact> manifoldOfModels(const Model& a, const Eigen::Isometry3d& X_WA, const Model& b,
                                       const Eigen::Isometry3d& X_WB, const ManifoldOptions& options,
                                       ContactCache* cache) {
-  checkOptions(options);
   if (!X_WA.matrix().allFinite() || !X_WB.matrix().allFinite())
     throw InputError("manifoldContacts: non-finite pose");
   const double tol = options.tolerance >= 0 ? options.tolerance : defaultSimulationTolerance(a, b);
@@ -412,6 +411,19 @@ std::vector<Contact> manifoldContacts(const Model& a, const Eigen::Isometry3d& X
   }
   contact::reduceContacts(out, options.maxContacts);
   return out;
+}
+
+}  // namespace
+
+std::vector<Contact> manifoldContacts(const Model& a, const Eigen::Isometry3d& X_WA, const Model& b,
+                                      const Eigen::Isometry3d& X_WB, const ManifoldOptions& options,
+                                      ContactCache* cache) {
+  checkOptions(options);
+  // At a level of detail the contacts are the stand-ins' (the same stand-in every step: the cache stays valid).
+  ManifoldOptions exact = options;
+  exact.detailA = exact.detailB = 0;
+  return manifoldOfModels(*a.atDetail(options.detailA).model, X_WA, *b.atDetail(options.detailB).model, X_WB, exact,
+                          cache);
 }
 
 }  // namespace unidist

@@ -465,7 +465,10 @@ std::vector<StructureReport> TriangleMesh::structures() const {
           {"winding", w != nullptr, w ? sizeof(*w) + w->memoryBytes() : 0}};
 }
 
-void TriangleMesh::buildStructures() const { winding(); }  // the winding data is built over the hierarchy
+void TriangleMesh::buildStructures() const {
+  winding();                          // built over the hierarchy, which it builds first
+  (void)bvh().rss(vertices_, triangles_);  // the nodes' swept-sphere volumes of mesh–mesh queries
+}
 
 std::size_t TriangleMesh::memoryBytes() const {
   std::size_t bytes = sizeof(*this) + vertices_.capacity() * sizeof(Eigen::Vector3d) +

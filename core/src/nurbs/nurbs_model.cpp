@@ -1,6 +1,7 @@
 // NurbsModel: patches, closedness and orientation of solids, the global point query, support, surface cells.
 #include "unidist/nurbs.h"
 
+#include "lod/tessellate.h"
 #include "nurbs/objectives.h"
 #include "nurbs/patch_search.h"
 #include "nurbs/patch_tree.h"
@@ -35,6 +36,7 @@ NurbsModel::NurbsModel(std::vector<NurbsSurface> surfaces, bool solid) : surface
       patchSurface_.push_back(static_cast<int>(k));
     }
   forest_ = std::make_unique<nurbs::PatchForest>(patches_);
+  standIns_ = std::make_unique<lod::StandInCache>();
   // Bounds: the box of the Euclidean control points (convex hull property). Exact for the conic models whose
   // extreme control points lie on the surface (sphere, torus, cylinder); conservative otherwise. (The support
   // searches that would make it tight are slow at poles, where the cells along a collapsed edge all reach the
@@ -195,10 +197,18 @@ std::size_t NurbsModel::patchTreeBytes() const {
   return forest_->bytes.load() + forest_->roots.size() * sizeof(nurbs::PatchNode);
 }
 
-std::vector<StructureReport> NurbsModel::structures() const { return {{"patch-tree", true, patchTreeBytes()}}; }
+std::vector<StructureReport> NurbsModel::structures() const {
+  return {{"patch-tree", true, patchTreeBytes()}, standIns_->report()};
+}
+
+StandIn NurbsModel::atDetail(double maxDeviation) const {
+  lod::checkLevel(maxDeviation);
+  if (maxDeviation == 0) return StandIn{this, 0.0};
+  return standIns_->get(*this, maxDeviation, [this](double level) { return lod::tessellate(*this, level); });
+}
 
 std::size_t NurbsModel::memoryBytes() const {
-  std::size_t bytes = sizeof(*this) + patchTreeBytes();
+  std::size_t bytes = sizeof(*this) + patchTreeBytes() + standIns_->report().bytes;
   for (const NurbsSurface& s : surfaces_)
     bytes += sizeof(s) + (s.knotsU().size() + s.knotsV().size()) * sizeof(double) +
              static_cast<std::size_t>(s.countU() * s.countV()) * sizeof(Eigen::Vector4d);

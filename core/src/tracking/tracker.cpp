@@ -47,6 +47,7 @@ std::vector<LocalMinimum> globalPass(const Model& a, const Model& b, const Local
                                      const TrackerOptions& o, const Eigen::Isometry3d& X_AB) {
   ContactOptions co;
   static_cast<QueryOptions&>(co) = o;
+  co.detailA = co.detailB = 0;  // a and b are already the models at their levels of detail
   co.margin = o.cutoff + 2 * o.guard;
   const Eigen::Isometry3d I = Eigen::Isometry3d::Identity();
   std::vector<LocalMinimum> out;
@@ -65,7 +66,9 @@ struct Track {
 }  // namespace
 
 struct Tracker::Impl {
-  std::shared_ptr<const Model> a, b;
+  std::shared_ptr<const Model> ownerA, ownerB;
+  const Model& a;  // the models at their levels of detail (their stand-ins live as long as the owners)
+  const Model& b;
   TrackerOptions options;
   LocalUpdater updater;
   double mergeDistance;
@@ -81,13 +84,14 @@ struct Tracker::Impl {
   std::future<std::vector<LocalMinimum>> pending;
 
   Impl(std::shared_ptr<const Model> a0, std::shared_ptr<const Model> b0, const TrackerOptions& o)
-      : a(std::move(a0)), b(std::move(b0)), options(resolve(*a, *b, o)),
-        updater(*a, *b, options.tolerance, options.maxLocalIterations),
-        mergeDistance(std::max(16 * options.tolerance, 1e-5 * std::min(boundedDiagonal(*a), boundedDiagonal(*b)))) {}
+      : ownerA(std::move(a0)), ownerB(std::move(b0)), a(*ownerA->atDetail(o.detailA).model),
+        b(*ownerB->atDetail(o.detailB).model), options(resolve(a, b, o)),
+        updater(a, b, options.tolerance, options.maxLocalIterations),
+        mergeDistance(std::max(16 * options.tolerance, 1e-5 * std::min(boundedDiagonal(a), boundedDiagonal(b)))) {}
 
   bool passDue(const Eigen::Isometry3d& X_AB) const {
     return !passed || updatesSincePass >= options.globalPeriod ||
-           relativeMotion(*a, *b, X_ABpass, X_AB) > options.guard;
+           relativeMotion(a, b, X_ABpass, X_AB) > options.guard;
   }
 
   void startPass(const Eigen::Isometry3d& X_AB, bool inlinePass) {
@@ -97,12 +101,12 @@ struct Tracker::Impl {
     ++counters.globalPasses;
     last.globalPassStarted = true;
     if (inlinePass) {
-      merge(globalPass(*a, *b, updater, options, X_AB), X_AB);
+      merge(globalPass(a, b, updater, options, X_AB), X_AB);
       return;
     }
     // The worker reads the models (const, thread-safe) and the updater (const); its copies of the options and
     // the pose are its own. The models outlive it: the future's destructor waits.
-    pending = std::async(std::launch::async, [this, X_AB] { return globalPass(*a, *b, updater, options, X_AB); });
+    pending = std::async(std::launch::async, [this, X_AB] { return globalPass(a, b, updater, options, X_AB); });
   }
 
   /// A pass's minima, locally updated to the current pose, join the tracked ones (duplicates removed later).
@@ -195,7 +199,7 @@ struct Tracker::Impl {
     for (Track& t : tracks) {
       const double d = t.m.distance;
       if (!(d < -tol) || (t.hasPrevious && t.previous < -tol)) continue;
-      if (b->inside(X_BA * t.m.pA_A) || a->inside(X_AB * t.m.pB_B)) continue;
+      if (b.inside(X_BA * t.m.pA_A) || a.inside(X_AB * t.m.pB_B)) continue;
       t.m.distance = std::numeric_limits<double>::infinity();
       ++counters.falseOverlaps;
     }

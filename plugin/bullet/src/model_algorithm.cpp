@@ -79,7 +79,7 @@ bool finitePose(const btCollisionObjectWrapper& w) { return toEigen(w.getWorldTr
 
 /// b: the other shape's unidist data, null for Bullet's shapes.
 QueryOptions pairDial(const ModelShapeData& a, const ModelShapeData* b) {
-  return b ? stricter(a.queryOptions(), b->queryOptions()) : a.queryOptions();
+  return dialOfPair(a.queryOptions(), b ? &b->queryOptions() : nullptr);
 }
 
 }  // namespace

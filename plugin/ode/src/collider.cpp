@@ -35,7 +35,7 @@ void put(dReal* out, const Eigen::Vector3d& v) {
 }
 
 /// The dial of a pair: the stricter of the two geoms' (a negative tolerance: ManifoldOptions' default).
-QueryOptions pairDial(const GeomRecord& a, const GeomRecord* b) { return b ? stricter(a.query, b->query) : a.query; }
+QueryOptions pairDial(const GeomRecord& a, const GeomRecord* b) { return dialOfPair(a.query, b ? &b->query : nullptr); }
 
 /// Default ray accuracy: 1e-4 × the model's bounding diagonal (1e-9 for an unbounded model).
 double rayTolerance(const GeomRecord& a) {

@@ -180,6 +180,8 @@ void setQueryOptions(dGeomID g, const QueryOptions& options) {
   setTolerance(g, options.tolerance);  // its checks and its "negative: the default"
   r->query.relativeTolerance = options.relativeTolerance;
   r->query.maxIterations = options.maxIterations;
+  r->query.detailA = options.detailA;  // the geom's own level of detail
+  r->query.detailB = 0;
 }
 
 QueryOptions queryOptions(dGeomID g) {

@@ -32,3 +32,28 @@ TEST(BulletLazyBuild, OnlyTheQueriedModelsBuildTheirStructures) {
 }
 
 }  // namespace
+
+namespace {
+
+// A shape's own level of detail (ShapeOptions::detailA): its model's stand-in answers the contacts, the exact
+// NURBS ball rests where the stand-in does (within the deviation), and a ball asked exactly builds no stand-in.
+TEST(BulletLazyBuild, AShapesLevelOfDetailAnswersItsContacts) {
+  bullet_test::TestWorld w;
+  const auto floor = test_models::meshBox(Eigen::Vector3d(2, 2, 0.1));
+  const auto coarse = test_models::nurbsSphere(0.2), exact = test_models::nurbsSphere(0.2);
+  unidist::bullet::ShapeOptions o;
+  o.detailA = 2e-3;
+  w.add(unidist::bullet::makeShape(floor), 0, bullet_test::at(0, 0, -0.1));
+  btRigidBody* a = w.add(unidist::bullet::makeShape(coarse, o), 1, bullet_test::at(0, 0, 0.5));
+  btRigidBody* b = w.add(unidist::bullet::makeShape(exact), 1, bullet_test::at(1, 0, 0.5));
+  w.run(1.5);
+
+  EXPECT_TRUE(structureBuilt(*coarse, "level-of-detail"));
+  EXPECT_FALSE(structureBuilt(*exact, "level-of-detail"));
+  const double deviation = coarse->atDetail(2e-3).deviation;
+  EXPECT_GT(deviation, 0);
+  EXPECT_NEAR(double(a->getWorldTransform().getOrigin().z()), 0.2, deviation + 2e-3);
+  EXPECT_NEAR(double(b->getWorldTransform().getOrigin().z()), 0.2, 2e-3);
+}
+
+}  // namespace

@@ -38,3 +38,33 @@ TEST_F(OdeLazyBuild, OnlyTheQueriedModelsBuildTheirStructures) {
 }
 
 }  // namespace
+
+namespace {
+
+class OdeLevelOfDetail : public odetest::OdeWorldTest {};
+
+// A geom's own level of detail (setQueryOptions, detailA): its model's stand-in answers the contacts, the ball
+// rests where the stand-in does (within the deviation), and a ball asked exactly builds no stand-in.
+TEST_F(OdeLevelOfDetail, AGeomsLevelOfDetailAnswersItsContacts) {
+  const auto floor = test_models::meshBox(Vec(2, 2, 0.1));
+  const auto coarse = test_models::nurbsSphere(0.2), exact = test_models::nurbsSphere(0.2);
+  dGeomSetPosition(unidist::ode::createGeom(space, floor), 0, 0, -0.1);
+  dMass m;
+  dMassSetSphere(&m, 1, 0.2);
+  dGeomID coarseGeom = unidist::ode::createGeom(space, coarse);
+  unidist::QueryOptions o;
+  o.detailA = 2e-3;
+  unidist::ode::setQueryOptions(coarseGeom, o);
+  dBodyID a = attachBody(coarseGeom, m, Vec(0, 0, 0.5));
+  dBodyID b = attachBody(unidist::ode::createGeom(space, exact), m, Vec(1, 0, 0.5));
+  run(1.5);
+
+  EXPECT_TRUE(structureBuilt(*coarse, "level-of-detail"));
+  EXPECT_FALSE(structureBuilt(*exact, "level-of-detail"));
+  const double deviation = coarse->atDetail(2e-3).deviation;
+  EXPECT_GT(deviation, 0);
+  EXPECT_NEAR(dBodyGetPosition(a)[2], 0.2, deviation + 2e-3);
+  EXPECT_NEAR(dBodyGetPosition(b)[2], 0.2, 2e-3);
+}
+
+}  // namespace

@@ -19,7 +19,8 @@
 namespace unidist::bullet {
 
 /// The dial of this shape's contact queries (unidist/query_options.h); a pair uses the stricter of its two
-/// shapes' dials. tolerance < 0: 1e-4 × the smaller bounding diagonal of the pair.
+/// shapes' dials. tolerance < 0: 1e-4 × the smaller bounding diagonal of the pair. detailA: this shape's level
+/// of detail (its model's stand-in, Model::atDetail, answers its contacts); detailB is ignored.
 struct ShapeOptions : QueryOptions {};
 
 /// What both shape classes carry.

@@ -73,7 +73,8 @@ void setTolerance(dGeomID g, double tolerance);
 double tolerance(dGeomID g);
 
 /// The whole dial of this geom's queries (unidist/query_options.h); a pair uses the stricter of its two geoms'
-/// dials. The tolerance follows setTolerance's rules. Throws InputError for a geom that is not a unidist geom or
+/// dials, each geom its own level of detail (detailA: its model's stand-in, Model::atDetail, answers its
+/// contacts; detailB is ignored). The tolerance follows setTolerance's rules. Throws InputError for a geom that is not a unidist geom or
 /// an invalid setting.
 void setQueryOptions(dGeomID g, const QueryOptions& options);
 QueryOptions queryOptions(dGeomID g);
