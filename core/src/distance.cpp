@@ -4,6 +4,7 @@
 
 #include "dispatch.h"
 #include "generic/generic_distance.h"
+#include "generic/pair_polish.h"
 #include "pairs/analytic.h"
 
 #include <algorithm>
@@ -122,6 +123,7 @@ DistanceResult answer(detail::PairFn routine, const Model& a, const Eigen::Isome
       r = routine(pa, pb, c);
     }
     measured = !c.overlapVerdictOnly;
+    if (measured) detail::polishSeparation(pa, pb, r, c.tolerance);
     inflate(r, pa, pb, options.inflateA, options.inflateB, c.tolerance);
     return r;
   };

@@ -3,8 +3,7 @@
 //  * DialContract: the bounds always hold the truth and a certified answer is within its tolerance (the
 //    contract, docs/query-contract.md);
 //  * DialMonotone: the true error never grows beyond the looser tolerance's (up to rounding) — not promised by
-//    the contract, but what a user turning the dial expects; the NURBS families are held to the weaker form
-//    (see strictlyMonotone below).
+//    the contract, but what a user turning the dial expects.
 // Two suites so that a breach of the contract and a non-monotone dial fail under different names. The benchmark
 // of the same cases is tests/bench/dial_bench.cpp (docs/dial.md).
 #include "core/dial_families.h"
@@ -88,39 +87,17 @@ TEST_P(DialContract, BoundsHoldAndCertifiedWithinTolerance) {
   RecordProperty("penetrating_cases", penetrating);
 }
 
-/// Families whose search still returns a tolerance-dependent point pair (the last one found when the bracket
-/// closes, not a polished local minimum), so the true error can grow within the tighter tolerance: there the
-/// test holds the dial to its guarantee (never worse than the looser answer by more than the tighter tolerance)
-/// and counts the strict breaches. Open (issue 8): a final local polish of the winning pair in nurbs_convex.cpp,
-/// nurbs_mesh.cpp and nurbs_nurbs.cpp would make these strict too.
-bool strictlyMonotone(const std::string& family) {
-  for (const char* polished : {"prim-nurbs", "mesh-nurbs", "nurbs-nurbs"})
-    if (family == polished) return false;
-  return true;
-}
-
+// Every family, NURBS ones included: their separation answers end with a local polish of the winning pair
+// (core/src/generic/pair_polish.h), so where the search stopped no longer shows in the error.
 TEST_P(DialMonotone, ErrorNeverGrowsAsToleranceTightens) {
-  const bool strict = strictlyMonotone(GetParam().name);
-  int breaches = 0;
   for (const auto& [c, answers] : sweep(GetParam())) {
     double looserError = std::numeric_limits<double>::infinity();
     for (const Answer& a : answers) {
       SCOPED_TRACE(a.where);
       const double error = std::abs(a.result.distance - c.truth);
-      const double allowed = std::max(looserError, rounding(c));
-      if (strict) {
-        EXPECT_LE(error, allowed) << "the true error grew as the tolerance tightened";
-      } else {
-        EXPECT_LE(error, allowed + a.relative * c.size) << "the true error grew beyond the tighter tolerance";
-        breaches += error > allowed;
-      }
+      EXPECT_LE(error, std::max(looserError, rounding(c))) << "the true error grew as the tolerance tightened";
       looserError = error;
     }
-  }
-  if (!strict) {
-    RecordProperty("strict_breaches", breaches);
-    std::printf("%s: %d strict monotonicity breaches (each within the tighter tolerance)\n", GetParam().name,
-                breaches);
   }
 }
 

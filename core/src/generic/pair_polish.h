@@ -1,0 +1,16 @@
+// The last step of a separation answer that involves a NURBS model: alternating local projections from its
+// closest points (Newton on the NURBS surfaces, exact projections on everything else), kept only while the
+// realised gap shrinks. The search stops where its bounds meet the tolerance, anywhere in the bracket; the
+// polish takes the pair on to its local minimum, so the answer's true error no longer depends on where the
+// search stopped (a tighter tolerance never answers less accurately: docs/dial.md). Internal.
+#pragma once
+
+#include "pairs/pair_query.h"
+
+namespace unidist::detail {
+
+/// Improves a separated answer (r.lowerBound > 0) in place: points, distance, normal, upper bound. The bounds stay
+/// proved (every pair it keeps is a pair of realised surface points); the status is settled against `tolerance`.
+void polishSeparation(const PosedModel& a, const PosedModel& b, DistanceResult& r, double tolerance);
+
+}  // namespace unidist::detail
