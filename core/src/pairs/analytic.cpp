@@ -26,7 +26,11 @@ double supportGapLowerBound(const PosedModel& a, const PosedModel& b, const Eige
   const double maxA = u.dot(a.supportWorld(u));
   const double minB = u.dot(b.supportWorld(-u));
   const double gap = minB - maxA;
-  return gap - roundingSlack(std::abs(maxA) + std::abs(minB));
+  // A NURBS support point is found by a search proved to 1e-13 × the model's size (unidist/nurbs.h).
+  const auto searchSlack = [](const PosedModel& m) {
+    return m.model.type() == ModelType::Nurbs ? 1e-13 * m.model.localBounds().diagonal() : 0.0;
+  };
+  return gap - roundingSlack(std::abs(maxA) + std::abs(minB)) - searchSlack(a) - searchSlack(b);
 }
 
 DistanceResult planeAny(const PosedModel& planeModel, const PosedModel& other, const QueryContext&) {
