@@ -307,6 +307,21 @@ TEST(NurbsClosestPoint, WavyPatchAgainstDenseSamplingOracle) {
   EXPECT_LE(oracleWorse, 20);  // 0.2 %: the grid + Newton oracle, not the model
 }
 
+// Known bug (open, docs/nurbs.md): two of the benchmark's 10,000 points (tests/bench/nurbs_vs_occt.cpp, seed 11)
+// are missed by 3.1e-3 and 4.7e-6. A leaf counted as flat (normal cone under 0.5 rad, radius under half the
+// distance) is closed after one Newton run from its centre; here the run left the leaf for a neighbour's minimum
+// and the leaf held a second basin of its own (one on the patch's edge v = 1, one 0.002 from a knot line).
+// Splitting such leaves fixes both but makes queries near a sphere's centre split down to the tolerance; the fix
+// wanted is a convexity certificate of |S − q|² over a leaf. Run with --gtest_also_run_disabled_tests.
+TEST(NurbsClosestPoint, DISABLED_WavyPatchLeafWithTwoBasins) {
+  const NurbsSurface surface = wavySurface();
+  const auto m = model(surface, false);
+  const nurbs_fixtures::GridOracle oracle(surface);
+  for (const Vec& q : {Vec(0.35478113855090787, 1.0967470665551833, 0.6240719994220848),
+                       Vec(-0.28994751102553346, 1.0028173373107954, -0.55201550127532839)})
+    EXPECT_NEAR(m->closestPoint(q).signedDistance, oracle.distance(q), 1e-10) << q.transpose();
+}
+
 TEST(NurbsClosestPoint, ConcurrentQueriesAgree) {
   const auto m = model(torusSurface(), true);
   std::vector<Vec> qs;

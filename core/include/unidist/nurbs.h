@@ -47,6 +47,7 @@
 
 #include "unidist/model.h"
 
+#include <array>
 #include <memory>
 #include <vector>
 
@@ -158,6 +159,10 @@ class NurbsModel final : public Model {
   int patchSurface(int k) const { return patchSurface_[static_cast<std::size_t>(k)]; }
   /// +1 when Su x Sv points outward, −1 when the model's normals are flipped (solids only; +1 for open).
   int orientation() const { return orientation_; }
+  /// Whether surface s meets itself across its domain's edges in direction d (0: u, 1: v) — a revolved sphere's
+  /// or torus's seam: the two opposite edges coincide pointwise (sampled, 1e-9 × size) and have length (a pole
+  /// does not count). Found at construction.
+  bool periodic(int s, int d) const { return periodic_[static_cast<std::size_t>(s)][static_cast<std::size_t>(d)]; }
   /// Outward unit normal of patch k at local (s, t); at a degenerate point (pole) the limit from inside the patch.
   Eigen::Vector3d patchNormal(int k, double s, double t) const;
   /// The subdivision tree (internal type, for tests and core/src).
@@ -165,6 +170,7 @@ class NurbsModel final : public Model {
 
  private:
   void checkClosed() const;
+  std::array<bool, 2> findPeriodic(const NurbsSurface& s) const;
   double enclosedVolume() const;
   std::size_t patchTreeBytes() const;  // the cached subdivision tree so far
 
@@ -176,6 +182,7 @@ class NurbsModel final : public Model {
   Aabb bounds_;
   std::unique_ptr<nurbs::PatchForest> forest_;
   std::unique_ptr<lod::StandInCache> standIns_;
+  std::vector<std::array<bool, 2>> periodic_;  // per surface, u and v
 };
 
 }  // namespace unidist

@@ -1,6 +1,9 @@
 #include "generic/pair_polish.h"
 
 #include "tracking/local_surface.h"
+#include "unidist/nurbs.h"
+
+#include <algorithm>
 
 #include <cmath>
 #include <limits>
@@ -10,25 +13,53 @@ namespace {
 
 constexpr int kMaxPolishSteps = 64;
 
-/// A model's projection for the polish: the exact global query first (it also gives the hint), then local.
+/// The parameters of the control point nearest to p_M (Greville abscissae): where Newton starts to find the
+/// parameters of a point on the surface.
+tracking::Hint nodalHint(const NurbsModel& m, const Eigen::Vector3d& p_M) {
+  const auto greville = [](const std::vector<double>& knots, int degree, int i, double lo, double hi) {
+    double sum = 0;
+    for (int k = 1; k <= degree; ++k) sum += knots[static_cast<std::size_t>(i + k)];
+    return std::clamp(sum / degree, lo, hi);
+  };
+  tracking::Hint best;
+  double nearest = std::numeric_limits<double>::infinity();
+  for (int s = 0; s < static_cast<int>(m.surfaces().size()); ++s) {
+    const NurbsSurface& S = m.surfaces()[static_cast<std::size_t>(s)];
+    for (int i = 0; i < S.countU(); ++i)
+      for (int j = 0; j < S.countV(); ++j) {
+        const double d = (S.controlPoint(i, j).head<3>() - p_M).squaredNorm();
+        if (d < nearest) {
+          nearest = d;
+          best.feature = s;
+          best.param = {greville(S.knotsU(), S.degreeU(), i, S.uMin(), S.uMax()),
+                        greville(S.knotsV(), S.degreeV(), j, S.vMin(), S.vMax())};
+        }
+      }
+  }
+  return best;
+}
+
+/// A model's projection for the polish: local (Newton) on a NURBS model from the parameters of the answer's own
+/// point, the exact query on every other model (and where Newton cannot find the answer's point).
 struct Projector {
   const PosedModel& posed;
-  std::unique_ptr<tracking::LocalSurface> local;  // NURBS only: Newton from the hint
+  std::unique_ptr<tracking::LocalSurface> local;  // NURBS only
   tracking::Hint hint;
-  bool started = false;
 
-  explicit Projector(const PosedModel& p) : posed(p) {
-    if (p.model.type() == ModelType::Nurbs) local = tracking::LocalSurface::make(p.model);
+  Projector(const PosedModel& p, const Eigen::Vector3d& start_W) : posed(p) {
+    const auto* nurbs = dynamic_cast<const NurbsModel*>(&p.model);
+    if (!nurbs) return;
+    local = tracking::LocalSurface::make(p.model);
+    const Eigen::Vector3d start = p.toLocal(start_W);
+    hint = nodalHint(*nurbs, start);
+    tracking::Work work;
+    const SurfacePoint s = local->project(start, hint, work);  // the start is on the surface: its own parameters
+    if (!((s.point - start).norm() <= 1e-9 * p.model.localBounds().diagonal())) hint = local->hintOf(p.model.closestPoint(start));
   }
 
   Eigen::Vector3d project(const Eigen::Vector3d& q_W) {
     const Eigen::Vector3d q = posed.toLocal(q_W);
-    if (!local || !started) {
-      const SurfacePoint s = posed.model.closestPoint(q);
-      if (local) hint = local->hintOf(s);
-      started = true;
-      return posed.toWorld(s.point);
-    }
+    if (!local) return posed.toWorld(posed.model.closestPoint(q).point);
     tracking::Work work;
     return posed.toWorld(local->project(q, hint, work).point);
   }
@@ -39,7 +70,7 @@ struct Projector {
 void polishSeparation(const PosedModel& a, const PosedModel& b, DistanceResult& r, double tolerance) {
   if (!(r.lowerBound > 0) || !(r.distance > 0)) return;
   if (a.model.type() != ModelType::Nurbs && b.model.type() != ModelType::Nurbs) return;
-  Projector pa(a), pb(b);
+  Projector pa(a, r.pointA), pb(b, r.pointB);
   Eigen::Vector3d pointA = r.pointA;
   double best = r.distance;
   for (int step = 0; step < kMaxPolishSteps; ++step) {

@@ -47,9 +47,31 @@ NurbsModel::NurbsModel(std::vector<NurbsSurface> surfaces, bool solid) : surface
     checkClosed();
     if (enclosedVolume() < 0) orientation_ = -1;
   }
+  for (const NurbsSurface& s : surfaces_) periodic_.push_back(findPeriodic(s));
 }
 
 NurbsModel::~NurbsModel() = default;
+
+std::array<bool, 2> NurbsModel::findPeriodic(const NurbsSurface& s) const {
+  const double size = bounds_.diagonal();
+  const Eigen::Vector2d lo(s.uMin(), s.vMin()), hi(s.uMax(), s.vMax());
+  std::array<bool, 2> periodic{false, false};
+  constexpr int kSamples = 9;
+  for (int k = 0; k < 2; ++k) {
+    bool same = true;
+    for (int i = 0; i <= kSamples && same; ++i) {
+      const double t = lo[1 - k] + (hi[1 - k] - lo[1 - k]) * i / kSamples;
+      const Eigen::Vector3d a = k == 0 ? s.evaluate(lo[0], t) : s.evaluate(t, lo[1]);
+      const Eigen::Vector3d b = k == 0 ? s.evaluate(hi[0], t) : s.evaluate(t, hi[1]);
+      same = (a - b).norm() <= kRelativeClosure * size;
+    }
+    // An edge collapsed to a point (a pole) also "coincides": require the edge to have length.
+    const Eigen::Vector3d e0 = s.evaluate(lo[0], lo[1]);
+    const Eigen::Vector3d e1 = k == 0 ? s.evaluate(lo[0], 0.5 * (lo[1] + hi[1])) : s.evaluate(0.5 * (lo[0] + hi[0]), lo[1]);
+    periodic[static_cast<std::size_t>(k)] = same && (e0 - e1).norm() > kRelativeClosure * size;
+  }
+  return periodic;
+}
 
 void NurbsModel::checkClosed() const {
   const double size = bounds_.diagonal(), tol = kRelativeClosure * size;

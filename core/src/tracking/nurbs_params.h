@@ -41,28 +41,13 @@ struct SurfaceParams {
 class ModelParams {
  public:
   explicit ModelParams(const NurbsModel& m) {
-    const double size = m.localBounds().diagonal();
-    for (const NurbsSurface& s : m.surfaces()) {
+    for (int k = 0; k < static_cast<int>(m.surfaces().size()); ++k) {
+      const NurbsSurface& s = m.surfaces()[static_cast<std::size_t>(k)];
       SurfaceParams p;
       p.lo = {s.uMin(), s.vMin()};
       p.hi = {s.uMax(), s.vMax()};
-      // Periodic when the two opposite domain edges coincide pointwise (sampled; 1e-9 × size, the solid-closure
-      // tolerance of nurbs.h).
-      constexpr int kSamples = 9;
-      for (int k = 0; k < 2; ++k) {
-        bool same = true;
-        for (int i = 0; i <= kSamples && same; ++i) {
-          const double t = p.lo[1 - k] + (p.hi[1 - k] - p.lo[1 - k]) * i / kSamples;
-          const Eigen::Vector3d a = k == 0 ? s.evaluate(p.lo[0], t) : s.evaluate(t, p.lo[1]);
-          const Eigen::Vector3d b = k == 0 ? s.evaluate(p.hi[0], t) : s.evaluate(t, p.hi[1]);
-          same = (a - b).norm() <= 1e-9 * size;
-        }
-        // An edge collapsed to a point (a pole) also "coincides": require the edge to have length.
-        const Eigen::Vector3d e0 = k == 0 ? s.evaluate(p.lo[0], p.lo[1]) : s.evaluate(p.lo[0], p.lo[1]);
-        const Eigen::Vector3d e1 = k == 0 ? s.evaluate(p.lo[0], 0.5 * (p.lo[1] + p.hi[1]))
-                                          : s.evaluate(0.5 * (p.lo[0] + p.hi[0]), p.lo[1]);
-        p.periodic[k] = same && (e0 - e1).norm() > 1e-9 * size;
-      }
+      p.periodic[0] = m.periodic(k, 0);
+      p.periodic[1] = m.periodic(k, 1);
       surfaces_.push_back(p);
     }
   }
