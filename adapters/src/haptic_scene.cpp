@@ -18,12 +18,7 @@ class HapticSceneParser : JsonFields {
   using JsonFields::JsonFields;
 
   HapticScene parse(const std::string& text) {
-    json root;
-    try {
-      root = json::parse(text);
-    } catch (const json::exception& e) {
-      throw InputError(what() + ": not valid JSON (" + std::string(e.what()) + ")");
-    }
+    json root = parseDocument(text);
     onlyKeys(root, "top level", {"servo_rate_hz", "steps", "tracker", "environment", "probes"},
              {"steps", "tracker", "environment", "probes"});
     HapticScene s;

@@ -1,4 +1,4 @@
-// Strict JSON reading shared by the scene formats (scene.cpp, haptic_scene.cpp): every problem throws InputError
+// Strict JSON reading shared by the JSON formats (scene.cpp, haptic_scene.cpp, formats/unurbs_reader.cpp): every problem throws InputError
 // naming the source and the JSON path of the value ("scene.json: bodies[1] (\"ball\").mass: must be > 0").
 // Models are loaded once per distinct text (bodies naming the same file share one model and its hierarchy).
 // Internal.
@@ -29,6 +29,21 @@ class JsonFields {
 
   [[noreturn]] void fail(const std::string& where, const std::string& what) const {
     throw InputError(what_ + ": " + where + ": " + what);
+  }
+
+  /// nlohmann's message without its "[json.exception...] parse error at line 1, column 2: " prefix.
+  static std::string shortReason(const std::string& what) {
+    const auto colon = what.rfind(": ");
+    return colon == std::string::npos ? what : what.substr(colon + 2);
+  }
+
+  /// The whole text as JSON, or InputError "<source>: not valid JSON (<reason>)".
+  json parseDocument(const std::string& text) const {
+    try {
+      return json::parse(text);
+    } catch (const json::exception& e) {
+      throw InputError(what_ + ": not valid JSON (" + shortReason(e.what()) + ")");
+    }
   }
 
   /// The object has every required key and no key outside `allowed`.

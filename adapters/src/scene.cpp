@@ -18,12 +18,7 @@ class SceneParser : JsonFields {
   using JsonFields::JsonFields;
 
   Scene parse(const std::string& text) {
-    json root;
-    try {
-      root = json::parse(text);
-    } catch (const json::exception& e) {
-      throw InputError(what() + ": not valid JSON (" + shortReason(e.what()) + ")");
-    }
+    json root = parseDocument(text);
     onlyKeys(root, "top level", {"gravity", "dt", "steps", "bodies"}, {"bodies"});
     Scene s;
     s.path = what();
@@ -42,10 +37,6 @@ class SceneParser : JsonFields {
   }
 
  private:
-  static std::string shortReason(const std::string& what) {
-    const auto colon = what.rfind(": ");
-    return colon == std::string::npos ? what : what.substr(colon + 2);
-  }
 
   SceneBody body(const json& v, const std::string& index) {
     // Name the body in every message once its name can be read.

@@ -159,9 +159,7 @@ DistanceResult answer(detail::PairFn routine, const Model& a, const Eigen::Isome
 DistanceResult answerAtDetail(detail::PairFn routine, const Model& a, const Eigen::Isometry3d& X_WA, const Model& b,
                               const Eigen::Isometry3d& X_WB, const DistanceOptions& options) {
   if (options.detailA == 0 && options.detailB == 0) return answer(routine, a, X_WA, b, X_WB, options);
-  if (const char* why = invalidDialSetting(options)) throw InputError(why);
-  requireValidPose(X_WA, "A");
-  requireValidPose(X_WB, "B");
+  // atDetail checks the levels; answer() checks everything else.
   const StandIn sa = a.atDetail(options.detailA), sb = b.atDetail(options.detailB);
   const double deviation = sa.deviation + sb.deviation;
   if (deviation == 0) return answer(routine, *sa.model, X_WA, *sb.model, X_WB, options);

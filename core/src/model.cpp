@@ -2,6 +2,7 @@
 #include "unidist/model.h"
 
 #include "lod/stand_in_cache.h"
+#include "unidist/query_options.h"
 
 #include <algorithm>
 #include <cmath>
@@ -81,8 +82,7 @@ BoundingSphere Model::localBoundingSphere() const {
 
 namespace lod {
 void checkLevel(double maxDeviation) {
-  if (!std::isfinite(maxDeviation) || maxDeviation < 0)
-    throw InputError("level of detail (largest deviation) must be finite and >= 0");
+  if (const char* why = invalidLevelOfDetail(maxDeviation)) throw InputError(why);
 }
 }  // namespace lod
 

@@ -10,34 +10,31 @@
 // the surface's JSON path in front; a "solid" model that is not closed is rejected by NurbsModel.
 #include "formats/readers.h"
 #include "formats/text_scanner.h"
+#include "json_fields.h"
 
 #include "unidist/nurbs.h"
-
-#include <nlohmann/json.hpp>
-
-#include <cmath>
-#include <set>
 
 namespace unidist::formats {
 namespace {
 
-using nlohmann::json;
+using json = JsonFields::json;
 
-class UnurbsParser {
+class UnurbsParser : JsonFields {
  public:
-  explicit UnurbsParser(std::string path) : path_(std::move(path)) {}
+  explicit UnurbsParser(const std::string& path) : JsonFields("", path) {}
 
   std::shared_ptr<const Model> read() {
-    const std::string text = readWholeFile(path_);
+    const std::string text = readWholeFile(what());
     json root;
     try {
       root = json::parse(text);
     } catch (const json::parse_error& e) {
-      failAtByte(path_, e.byte > 0 ? e.byte - 1 : 0, std::string("not valid JSON (") + shortReason(e.what()) + ")");
+      failAtByte(what(), e.byte > 0 ? e.byte - 1 : 0, std::string("not valid JSON (") + shortReason(e.what()) + ")");
     } catch (const json::exception& e) {  // e.g. a number too large for a double
-      throw InputError(path_ + ": not valid JSON (" + shortReason(e.what()) + ")");
+      throw InputError(what() + ": not valid JSON (" + shortReason(e.what()) + ")");
     }
-    requireKeys(root, "", {"type", "solid", "surfaces"});
+    const auto keys = {"type", "solid", "surfaces"};
+    onlyKeys(root, "top level", keys, keys);
     const json& type = root["type"];
     if (!type.is_string() || type.get<std::string>() != "nurbs") fail("type", "must be the string \"nurbs\"");
     if (!root["solid"].is_boolean()) fail("solid", "must be true or false");
@@ -48,39 +45,11 @@ class UnurbsParser {
     try {
       return std::make_shared<const NurbsModel>(std::move(out), root["solid"].get<bool>());
     } catch (const InputError& e) {
-      throw InputError(path_ + ": " + e.what());
+      throw InputError(what() + ": " + e.what());
     }
   }
 
  private:
-  [[noreturn]] void fail(const std::string& where, const std::string& what) const {
-    throw InputError(path_ + ": " + where + ": " + what);
-  }
-
-  static std::string shortReason(const std::string& what) {
-    const auto colon = what.rfind(": ");
-    return colon == std::string::npos ? what : what.substr(colon + 2);
-  }
-
-  void requireKeys(const json& object, const std::string& where, std::initializer_list<const char*> keys) const {
-    const std::string at = where.empty() ? "top level" : where;
-    if (!object.is_object()) fail(at, "must be a JSON object");
-    std::set<std::string> known;
-    for (const char* k : keys) {
-      known.insert(k);
-      if (!object.contains(k)) fail(at, std::string("missing key \"") + k + "\"");
-    }
-    for (const auto& item : object.items())
-      if (!known.count(item.key())) fail(at, "unknown key \"" + item.key() + "\"");
-  }
-
-  double number(const json& v, const std::string& where) const {
-    if (!v.is_number()) fail(where, "must be a number");
-    const double x = v.get<double>();
-    if (!std::isfinite(x)) fail(where, "must be finite");
-    return x;
-  }
-
   int degree(const json& v, const std::string& where) const {
     if (!v.is_number_integer()) fail(where, "must be an integer");
     const long long d = v.get<long long>();
@@ -96,7 +65,8 @@ class UnurbsParser {
   }
 
   NurbsSurface surface(const json& s, const std::string& where) const {
-    requireKeys(s, where, {"degree_u", "degree_v", "knots_u", "knots_v", "control_points"});
+    const auto keys = {"degree_u", "degree_v", "knots_u", "knots_v", "control_points"};
+    onlyKeys(s, where, keys, keys);
     const int p = degree(s["degree_u"], where + ".degree_u"), q = degree(s["degree_v"], where + ".degree_v");
     const json& net = s["control_points"];
     const std::string netAt = where + ".control_points";
@@ -120,11 +90,9 @@ class UnurbsParser {
     try {
       return NurbsSurface(p, q, std::move(ku), std::move(kv), std::move(points));
     } catch (const InputError& e) {
-      throw InputError(path_ + ": " + where + ": " + e.what());
+      fail(where, e.what());
     }
   }
-
-  std::string path_;
 };
 
 }  // namespace

@@ -51,13 +51,18 @@ inline QueryOptions dialOfPair(const QueryOptions& a, const QueryOptions* b) {
   return s;
 }
 
+/// What is wrong with a level of detail (null when nothing): it must be finite and >= 0.
+inline const char* invalidLevelOfDetail(double d) {
+  return std::isfinite(d) && d >= 0 ? nullptr : "level of detail (largest deviation) must be finite and >= 0";
+}
+
 /// What is wrong with the dial's relativeTolerance or maxIterations (null when nothing): the checks every owner
 /// of a dial makes (their tolerance rules differ: a geom refuses 0, a query takes it as "exact").
 inline const char* invalidDialSetting(const QueryOptions& o) {
   if (!std::isfinite(o.relativeTolerance) || o.relativeTolerance < 0) return "relative tolerance must be finite and >= 0";
   if (o.maxIterations < 1) return "maxIterations must be >= 1";
   for (double d : {o.detailA, o.detailB})
-    if (!std::isfinite(d) || d < 0) return "level of detail (largest deviation) must be finite and >= 0";
+    if (const char* why = invalidLevelOfDetail(d)) return why;
   return nullptr;
 }
 
