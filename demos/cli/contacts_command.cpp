@@ -53,12 +53,12 @@ std::string runContacts(const ContactsArgs& args) {
     for (std::size_t i = 0; i < cs.size(); ++i)
       out += std::string(i ? ", " : "") + "{\"point_a\": " + jsonVector(cs[i].pointA) +
              ", \"point_b\": " + jsonVector(cs[i].pointB) + ", \"normal\": " + jsonVector(cs[i].normal) +
-             ", \"distance\": " + jsonNumber(cs[i].distance) + "}";
+             ", \"distance\": " + jsonNumber(cs[i].distance) + ", \"error_bound\": " + jsonNumber(cs[i].errorBound) + "}";
     out += "]}\n";
   } else {
     for (const Contact& c : cs)
       out += "distance " + textNumber(c.distance) + "  point_a " + textVector(c.pointA) + "  point_b " +
-             textVector(c.pointB) + "  normal " + textVector(c.normal) + "\n";
+             textVector(c.pointB) + "  normal " + textVector(c.normal) + "  error_bound " + textNumber(c.errorBound) + "\n";
   }
   return out;
 }

@@ -1,4 +1,5 @@
-// `unidist contacts` as a black box: the JSON shape ({"contacts": [{point_a, point_b, normal, distance}]}), the
+// `unidist contacts` as a black box: the JSON shape ({"contacts": [{point_a, point_b, normal, distance,
+// error_bound}]}), the
 // invariant point_b − point_a = distance · normal with 17 significant digits, the known four corners of a box
 // resting on a box, --margin and --max-contacts, the text form (one line per contact), and bad input (exit 2,
 // nothing on stdout, one stderr line "unidist: error: ...").
@@ -8,6 +9,7 @@
 
 #include "run_unidist.h"
 
+#include <cmath>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -28,9 +30,11 @@ json contactsOf(const std::vector<std::string>& args) {
   EXPECT_EQ(j.size(), 1u);
   EXPECT_TRUE(j.at("contacts").is_array());
   for (const json& c : j.at("contacts")) {
-    EXPECT_EQ(c.size(), 4u);
+    EXPECT_EQ(c.size(), 5u);
     const Eigen::Vector3d a = vec(c.at("point_a")), b = vec(c.at("point_b")), n = vec(c.at("normal"));
     const double d = c.at("distance").get<double>();
+    const double e = c.at("error_bound").get<double>();
+    EXPECT_TRUE(e >= 0 && std::isfinite(e)) << e;
     EXPECT_NEAR(n.norm(), 1, 1e-12);
     EXPECT_LE((b - a - d * n).norm(), 1e-9);
   }
@@ -43,6 +47,7 @@ TEST(CliContacts, BoxOnBoxGivesFourCornersAsJson) {
   ASSERT_EQ(cs.size(), 4u);
   for (const json& c : cs) {
     EXPECT_NEAR(c.at("distance").get<double>(), 0, 1e-12);
+    EXPECT_LE(c.at("error_bound").get<double>(), 1e-12);  // closed-form box corners: rounding only
     EXPECT_NEAR(vec(c.at("normal")).z(), 1, 1e-12);
     EXPECT_NEAR(vec(c.at("point_a")).z(), 1, 1e-12);
   }
@@ -107,7 +112,10 @@ TEST(CliContacts, DetailOfANurbsBall) {
     const json cs = contactsOf({"contacts", ball, "sphere:r=50", "--pose-b", "200.5 0 0 1 0 0 0", "--margin", "1",
                                 "--detail-a", detail, "--json"});
     ASSERT_GE(cs.size(), 1u);
-    EXPECT_NEAR(cs[0].at("distance").get<double>(), 0.5, std::stod(detail) + 1e-6);
+    // The reported bound holds the truth and is the stand-in's deviation (<= D) plus the search's accuracy.
+    const double d = cs[0].at("distance").get<double>(), e = cs[0].at("error_bound").get<double>();
+    EXPECT_LE(std::abs(d - 0.5), e);
+    EXPECT_LE(e, std::stod(detail) + 1e-6);
   }
 }
 

@@ -37,6 +37,12 @@ struct Contact {
   double distance = 0;                                ///< signed: < 0 when penetrating
   /// The model's feature holding the point: a triangle of a mesh, a point of a cloud, a primitive's feature.
   int featureA = 0, featureB = 0;
+  /// Proved bound on how far `distance` is from the exact value of what it measures (docs/contacts.md): the
+  /// distance between the two features (mesh–mesh local minima), the signed distance from the contact's vertex or
+  /// cloud point to the other model, or the global signed distance (the contact unidist::distance gave). Covers
+  /// rounding, the NURBS searches' tolerance, a level of detail's deviations, and (manifoldContacts) how far a
+  /// contact was moved along its normal from where it was measured.
+  double errorBound = 0;
 };
 
 /// Local minimum distances within options.margin, sorted by distance (deepest first). Throws InputError for

@@ -62,6 +62,10 @@ struct SurfacePoint {
   double signedDistance = 0;  ///< |q - point|, negative when q is inside a solid
   int feature = 0;            ///< model-specific feature id (face, edge, vertex, patch, triangle, point index)
   Eigen::Vector2d param = Eigen::Vector2d::Zero();  ///< surface parameters where the model has them
+  /// Proved: the true distance from q to the surface is within `error` of |signedDistance| (beyond rounding).
+  /// 0 for the closed-form models (primitives, meshes, clouds); a NURBS model's search tolerance, or the gap its
+  /// budget left open.
+  double error = 0;
 };
 
 /// How sure an answer is: certified = proved within the requested tolerance; bounded = only the

@@ -4,6 +4,7 @@
 #include "contacts/box_box_contacts.h"
 
 #include "contacts/reduce.h"
+#include "contacts/rounding.h"
 #include "convex/segments.h"
 #include "pairs/box_box.h"
 
@@ -165,6 +166,7 @@ Contact exactContact(const Vector3d& hA, const Vector3d& hB, const Isometry3d& X
   const detail::ConvexDistance d = detail::boxBox(hA, Isometry3d::Identity(), hB, X_AB, tolerance);
   Contact c;
   c.pointA = d.pointA, c.pointB = d.pointB, c.normal = d.normal, c.distance = d.distance;
+  c.errorBound = d.upperBound - d.lowerBound;
   return c;
 }
 
@@ -231,6 +233,7 @@ std::vector<Contact> boxBoxContacts(const Box& a, const Isometry3d& X_WA, const 
   for (Contact& c : out) {
     c.featureA = a.closestPoint(X_AW * c.pointA).feature;
     c.featureB = b.closestPoint(X_BW * c.pointB).feature;
+    c.errorBound += roundingBound(c);
   }
   mergeDuplicates(out, 16 * slack);
   if (maxContacts > 0) reduceContacts(out, maxContacts);

@@ -4,6 +4,7 @@
 
 #include "contacts/point_contacts.h"
 #include "contacts/reduce.h"
+#include "contacts/rounding.h"
 #include "contacts/snch.h"
 #include "unidist/distance.h"
 #include "unidist/primitives.h"
@@ -32,6 +33,7 @@ Working working(const Model& m) {
 Contact fromDistance(const DistanceResult& r) {
   Contact c;
   c.pointA = r.pointA, c.pointB = r.pointB, c.normal = r.normal, c.distance = r.distance;
+  c.errorBound = r.errorBound();
   return c;
 }
 
@@ -128,6 +130,7 @@ std::vector<Contact> contactsOfModels(const Model& a, const Eigen::Isometry3d& X
   for (Contact& c : out) {
     if (wa.standIn) c.featureA = a.closestPoint(X_WA.inverse() * c.pointA).feature;
     if (wb.standIn) c.featureB = b.closestPoint(X_WB.inverse() * c.pointB).feature;
+    c.errorBound += contact::roundingBound(c);
   }
   contact::mergeDuplicates(out, 16 * std::max(tol, dirEps));
   if (options.maxContacts > 0) contact::reduceContacts(out, options.maxContacts);
@@ -142,7 +145,10 @@ std::vector<Contact> contacts(const Model& a, const Eigen::Isometry3d& X_WA, con
   // At a level of detail the contacts are the stand-ins' (their points, features and distances).
   ContactOptions exact = options;
   exact.detailA = exact.detailB = 0;
-  return contactsOfModels(*a.atDetail(options.detailA).model, X_WA, *b.atDetail(options.detailB).model, X_WB, exact);
+  const StandIn sa = a.atDetail(options.detailA), sb = b.atDetail(options.detailB);
+  std::vector<Contact> out = contactsOfModels(*sa.model, X_WA, *sb.model, X_WB, exact);
+  for (Contact& c : out) c.errorBound += sa.deviation + sb.deviation;
+  return out;
 }
 
 }  // namespace unidist

@@ -6,6 +6,7 @@
 #include "contacts/box_box_contacts.h"
 #include "contacts/pair_motion.h"
 #include "contacts/reduce.h"
+#include "contacts/rounding.h"
 #include "unidist/distance.h"
 #include "unidist/primitives.h"
 
@@ -71,6 +72,7 @@ Contact remeasureFromA(const Eigen::Vector3d& pA_W, const Model& b, const Eigen:
   c.pointA = pA_W;
   c.pointB = X_WB * s.point;
   c.distance = s.signedDistance;
+  c.errorBound = s.error;
   c.normal = -(X_WB.linear() * s.normal);  // B's outward normal points at A: the contact normal is its opposite
   c.featureA = featureA;
   c.featureB = s.feature;
@@ -86,6 +88,7 @@ Contact remeasureFromB(const Eigen::Vector3d& pB_W, const Model& a, const Eigen:
   c.pointA = X_WA * s.point;
   c.pointB = pB_W;
   c.distance = s.signedDistance;
+  c.errorBound = s.error;
   c.normal = X_WA.linear() * s.normal;
   c.featureA = s.feature;
   c.featureB = featureB;
@@ -181,8 +184,10 @@ Contact remeasure(const Contact& cached_A, const Model& a, const Model& b, const
   c.normal = n;
   c = deepenBoth(c, a, f.X_WA, f.X_AW, b, f.X_WB, f.X_BW, {kDeepenRoundsPerUpdate, f.slack});
   c.normal = n;
+  const double measured = c.distance;
   c.distance = (c.pointB - c.pointA).dot(n);
   c.pointB = c.pointA + c.distance * n;
+  c.errorBound += std::abs(c.distance - measured);  // the reading along n is not the measured one
   return c;
 }
 
@@ -260,6 +265,14 @@ bool apartWithoutQuery(const Model& a, const Eigen::Isometry3d& X_WA, const Mode
   return true;
 }
 
+/// What moving a lifted contact back adds to its error bound. Translating A's point by s·n changes its distance
+/// to B by exactly s·(n·n_c) along the contact normal n_c (the closest point stays put along that ray) and by at
+/// most the tangential part s·|n × n_c| (distance is 1-Lipschitz); once the point is past B's surface
+/// (distance < 0) the true depth lies between 0 and the reported one.
+double liftError(double skin, const Eigen::Vector3d& n, const Contact& c) {
+  return skin * n.cross(c.normal).norm() + std::max(0.0, -c.distance);
+}
+
 /// Whether contacts() works on the model as a mesh (a box becomes its 12-triangle stand-in).
 bool meshLike(const Model& m) { return m.type() == ModelType::Box || m.type() == ModelType::Mesh; }
 
@@ -293,6 +306,7 @@ std::vector<Contact> globalContacts(const Model& a, const Eigen::Isometry3d& X_W
     if (d.distance <= margin) {
       Contact c;
       c.pointA = d.pointA, c.pointB = d.pointB, c.normal = d.normal, c.distance = d.distance;
+      c.errorBound = d.errorBound();
       c.featureA = a.closestPoint(X_WA.inverse() * c.pointA).feature;
       c.featureB = b.closestPoint(X_WB.inverse() * c.pointB).feature;
       cs.push_back(c);
@@ -391,6 +405,7 @@ std::vector<Contact> manifoldOfModels(const Model& a, const Eigen::Isometry3d& X
         c.pointA += skin * n;
         c.distance -= skin * n.dot(c.normal);
         c.pointB = c.pointA + c.distance * c.normal;
+        c.errorBound += liftError(skin, n, c);
       }
       out.erase(std::remove_if(out.begin(), out.end(), [&](const Contact& c) { return c.distance > options.margin; }),
                 out.end());
@@ -410,6 +425,7 @@ std::vector<Contact> manifoldOfModels(const Model& a, const Eigen::Isometry3d& X
     if (had != cache->hasLift || (had && before.dot(cache->liftNormal_B) < 1 - 1e-6)) cache->valid = false;
   }
   contact::reduceContacts(out, options.maxContacts);
+  for (Contact& c : out) c.errorBound += contact::roundingBound(c);
   return out;
 }
 
@@ -422,8 +438,10 @@ std::vector<Contact> manifoldContacts(const Model& a, const Eigen::Isometry3d& X
   // At a level of detail the contacts are the stand-ins' (the same stand-in every step: the cache stays valid).
   ManifoldOptions exact = options;
   exact.detailA = exact.detailB = 0;
-  return manifoldOfModels(*a.atDetail(options.detailA).model, X_WA, *b.atDetail(options.detailB).model, X_WB, exact,
-                          cache);
+  const StandIn sa = a.atDetail(options.detailA), sb = b.atDetail(options.detailB);
+  std::vector<Contact> out = manifoldOfModels(*sa.model, X_WA, *sb.model, X_WB, exact, cache);
+  for (Contact& c : out) c.errorBound += sa.deviation + sb.deviation;
+  return out;
 }
 
 }  // namespace unidist

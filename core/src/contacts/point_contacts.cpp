@@ -34,6 +34,7 @@ Contact makeContact(const Eigen::Vector3d& p_M, const SurfacePoint& sp, const Ei
   const Eigen::Vector3d p = X_WM * p_M, q = X_WO * sp.point, n = X_WO.linear() * sp.normal;
   Contact c;
   c.distance = sp.signedDistance;
+  c.errorBound = sp.error;
   if (isA) {
     c.pointA = p, c.pointB = q, c.normal = -n;
     c.featureA = feature, c.featureB = sp.feature;

@@ -138,6 +138,7 @@ SurfacePoint NurbsModel::closestPoint(const Eigen::Vector3d& q_M) const {
   out.point = h.point;
   out.feature = patchSurface_[static_cast<std::size_t>(h.patch)];
   out.param = P.surfaceParam(h.s, h.t);
+  out.error = std::max(0.0, h.value - r.lowerBound);
   const Eigen::Vector3d away = q_M - h.point;
   const double d = away.norm();
   // Sum of the normals of the tied candidates at the same place (an edge or corner sees every face meeting

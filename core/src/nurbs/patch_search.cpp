@@ -142,6 +142,7 @@ SearchResult minimise(const PatchForest& forest, const std::vector<RationalBezie
     const PatchNode& n = *top.node;
     if (++out.nodes > kNurbsSearchBudget) {
       out.exhausted = true;
+      out.lowerBound = std::min(top.lower, out.best.value);
       break;
     }
     // Its minimum is on its border (a neighbour's) or at a patch corner (evaluated as nodes appear).
@@ -175,6 +176,7 @@ SearchResult minimise(const PatchForest& forest, const std::vector<RationalBezie
   }
   for (const PatchHit& h : hits)
     if (h.value <= out.best.value + tieTolerance) out.ties.push_back(h);
+  if (!out.exhausted) out.lowerBound = out.best.value - tolerance;
   return out;
 }
 

@@ -8,6 +8,7 @@
 
 #include "nurbs/patch_tree.h"
 
+#include <limits>
 #include <vector>
 
 namespace unidist::nurbs {
@@ -45,6 +46,9 @@ struct SearchResult {
   std::vector<PatchHit> ties;  ///< every hit within tieTolerance of the best (including it)
   int nodes = 0;
   bool exhausted = false;
+  /// The objective's minimum is at least this: best.value − tolerance, or when the budget ran out the lowest
+  /// bound still open (a small flat leaf is taken to hold one minimum, which Newton finds: see minimise()).
+  double lowerBound = -std::numeric_limits<double>::infinity();
 };
 
 /// Global minimum of the objective over every patch, to `tolerance` (absolute). Patches in `skip` are left out
