@@ -3,6 +3,7 @@
 // stay single where the tilt finds nothing closer than the margin, the box-on-box corners, the reduction to
 // maxContacts, the warm start (local updates while resting give the same contacts as a fresh search; motion
 // beyond the guard triggers a global search; a new contact region is never missed), and bad options.
+#include "nurbs_fixtures.h"
 #include "unidist/contact_manifold.h"
 #include "unidist/mesh.h"
 #include "unidist/primitives.h"
@@ -132,6 +133,45 @@ TEST(Manifold, WarmStartWhileRestingMatchesAFreshSearch) {
   // A move beyond the guard searches globally again.
   unidist::manifoldContacts(torus, at(Vec(0, 0, 0.74)), table, Iso::Identity(), o, &cache);
   EXPECT_EQ(cache.globalSearches, 3);
+}
+
+TEST(Manifold, WarmStartOfNurbsModelsProjectsLocallyAndMatchesAFreshSearch) {
+  // A NURBS torus resting on a box, and a NURBS ball on a NURBS ball (both sides curved, turned so that no pole
+  // is at the contact): while they jitter below the guard the warm start follows the contacts with the
+  // tracker's point Newton from each contact's (u, v), with the same deepest contact as a fresh search.
+  const unidist::NurbsModel torus({nurbs_fixtures::torusSurface(1, 0.25)}, true);
+  const unidist::NurbsModel ball({nurbs_fixtures::sphereSurface(0.5)}, true);
+  const unidist::Box table(Vec(2, 2, 0.5));
+  const Eigen::Quaterniond turn(0.9, 0.2, -0.3, 0.25);
+  struct Case {
+    const unidist::Model& a;
+    const unidist::Model& b;
+    Iso X_WB;
+    double restHeight;
+    Eigen::Quaterniond turnA;
+  };
+  const Case cases[] = {{torus, table, at(Vec(0, 0, -0.5)), 0.25, Eigen::Quaterniond(Eigen::AngleAxisd(0.3, Vec::UnitZ()))},
+                        {ball, ball, at(Vec(0, 0, 0), turn), 1.0, turn}};
+  for (const Case& k : cases) {
+    ManifoldOptions o;
+    o.margin = 0.02;
+    o.tolerance = 1e-4;
+    ContactCache cache;
+    for (int i = 0; i <= 8; ++i) {
+      const Iso X = at(Vec(1e-5 * i, 0, k.restHeight - 1e-4 + 1e-5 * (i % 3)),
+                       k.turnA * Eigen::Quaterniond(Eigen::AngleAxisd(1e-6 * i, Vec::UnitX())));
+      const auto warm = unidist::manifoldContacts(k.a, X, k.b, k.X_WB, o, &cache);
+      const auto fresh = unidist::manifoldContacts(k.a, X, k.b, k.X_WB, o);
+      ASSERT_FALSE(warm.empty());
+      ASSERT_FALSE(fresh.empty());
+      EXPECT_NEAR(warm.front().distance, fresh.front().distance, 2e-4) << i;
+      EXPECT_LE((warm.front().pointA - fresh.front().pointA).norm(), 0.02) << i;
+      expectConsistent(warm);
+    }
+    EXPECT_GT(cache.localUpdates, 4);
+    EXPECT_GT(cache.localProjections, 0);  // the warm start did project locally ...
+    EXPECT_LT(cache.projectionFallbacks * 10, cache.localProjections);  // ... and seldom needed the exact search
+  }
 }
 
 TEST(Manifold, WarmStartSeesANewRegionWithinTheGuard) {

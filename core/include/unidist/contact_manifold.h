@@ -9,7 +9,8 @@
 //    contact normal (an offset along a curved surface is a lever a solver turns into a rolling torque);
 //  * a warm start (ContactCache): while the relative pose of the pair has moved less than a guard distance
 //    since the last global search, the cached contacts are updated locally (closest-point projections from the
-//    last witness points, the normal of the search riding with B), which is sound because the global search was
+//    last witness points — on NURBS the tracker's point Newton from each contact's (u, v), checked and backed by
+//    the exact search — the normal of the search riding with B), which is sound because the global search was
 //    run with the margin grown by that guard: no contact within the margin can appear that it did not see;
 //  * a skin: once a pair has touched, A is lifted off B along the last contact normal before measuring, and
 //    the contacts are moved back (exact for a translation), so resting overlaps are measured as separations —
@@ -19,6 +20,7 @@
 
 #include "unidist/contacts.h"
 
+#include <memory>
 #include <vector>
 
 namespace unidist {
@@ -29,7 +31,14 @@ struct ManifoldOptions : QueryOptions {
   double margin = 0;      ///< report contacts with distance <= margin (>= 0): the engine's contact threshold
   int maxContacts = 4;    ///< > 0
   bool fillPatch = true;  ///< tilt A to find the rest of a resting patch (see above)
+  /// The warm start projects NURBS points locally (the tracker's point Newton from each contact's (u, v));
+  /// false: the exact global search every time (slower; for comparison and for suspect models).
+  bool localWarmStart = true;
 };
+
+namespace contact {
+class WarmProjections;
+}
 
 /// Per-pair state of the warm start. Owned by the engine's pair object (one per colliding pair); not shared
 /// between threads. A default-constructed cache is empty; reset() forgets everything.
@@ -41,6 +50,11 @@ struct ContactCache {
   bool hasLift = false;                                    ///< the last step had contacts:
   Eigen::Vector3d liftNormal_B = Eigen::Vector3d::UnitZ(); ///< its deepest normal, in B's frame
   long globalSearches = 0, localUpdates = 0;               ///< counters, for tests and benchmarks
+  /// The local projections of the warm start (NURBS models: the tracker's point Newton from each contact's
+  /// (u, v)), made at the first global search; internal. Their work so far: steps and Newton iterations, and
+  /// how many fell back to the exact search.
+  std::shared_ptr<contact::WarmProjections> projections;
+  long localProjections = 0, projectionFallbacks = 0;
   void reset() { *this = ContactCache{}; }
 };
 

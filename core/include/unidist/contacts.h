@@ -37,6 +37,9 @@ struct Contact {
   double distance = 0;                                ///< signed: < 0 when penetrating
   /// The model's feature holding the point: a triangle of a mesh, a point of a cloud, a primitive's feature.
   int featureA = 0, featureB = 0;
+  /// Surface parameters of the points where the model has them (NURBS: (u, v) of surface `feature`), as
+  /// SurfacePoint::param; zero elsewhere. manifoldContacts() keeps them as the warm start's hints.
+  Eigen::Vector2d paramA = Eigen::Vector2d::Zero(), paramB = Eigen::Vector2d::Zero();
   /// Proved bound on how far `distance` is from the exact value of what it measures (docs/contacts.md): the
   /// distance between the two features (mesh–mesh local minima), the signed distance from the contact's vertex or
   /// cloud point to the other model, or the global signed distance (the contact unidist::distance gave). Covers

@@ -7,6 +7,7 @@
 #include "contacts/pair_motion.h"
 #include "contacts/reduce.h"
 #include "contacts/rounding.h"
+#include "contacts/warm_projections.h"
 #include "unidist/distance.h"
 #include "unidist/primitives.h"
 
@@ -43,11 +44,21 @@ constexpr double kDeepenSlackInTolerances = 1e-3;
 /// Inside B, deepen() keeps a step only if B's normal there is within ~1.4° of the contact normal (cosine).
 constexpr double kDeepenInsideAgreement = 0.9997;
 
-/// How deepen() runs: at most `rounds` support steps, each kept unless shallower by more than `slack`.
+/// How deepen() runs: at most `rounds` support steps, each kept unless shallower by more than `slack`; its
+/// projections local from the contact's own places when `local` is set (the warm start), exact otherwise.
 struct DeepenSteps {
   int rounds;
   double slack;
+  contact::WarmProjections* local = nullptr;
 };
+
+/// Where a point sits on its model: its feature and surface parameters (the hint of a local projection).
+struct Place {
+  int feature = 0;
+  Eigen::Vector2d param = Eigen::Vector2d::Zero();
+};
+Place placeA(const Contact& c) { return {c.featureA, c.paramA}; }
+Place placeB(const Contact& c) { return {c.featureB, c.paramB}; }
 
 double defaultSimulationTolerance(const Model& a, const Model& b) {
   const double d = std::min(boundedDiagonal(a), boundedDiagonal(b));
@@ -63,49 +74,52 @@ void normalFromPoints(Contact& c) {
   if (length > 1e-12 * scale && c.distance != 0) c.normal = gap / std::copysign(length, c.distance);
 }
 
-/// The contact of the untilted pair at a point of A's surface: B's closest point to it (world frame; X_BW is
-/// X_WB's inverse, computed once by the caller: this runs for every cached contact every step).
-Contact remeasureFromA(const Eigen::Vector3d& pA_W, const Model& b, const Eigen::Isometry3d& X_WB,
-                       const Eigen::Isometry3d& X_BW, int featureA) {
-  const SurfacePoint s = b.closestPoint(X_BW * pA_W);
+/// The contact of the untilted pair at a point of A's surface (at place onA): B's closest point to it, found
+/// near nearB when `local` is set (world frame; X_BW is X_WB's inverse, computed once by the caller: this runs
+/// for every cached contact every step).
+Contact remeasureFromA(const Eigen::Vector3d& pA_W, const Place& onA, const Model& b, const Place& nearB,
+                       const Eigen::Isometry3d& X_WB, const Eigen::Isometry3d& X_BW, contact::WarmProjections* local) {
+  const SurfacePoint s = contact::projectOnto(local, b, X_BW * pA_W, nearB.feature, nearB.param);
   Contact c;
   c.pointA = pA_W;
   c.pointB = X_WB * s.point;
   c.distance = s.signedDistance;
   c.errorBound = s.error;
   c.normal = -(X_WB.linear() * s.normal);  // B's outward normal points at A: the contact normal is its opposite
-  c.featureA = featureA;
-  c.featureB = s.feature;
+  c.featureA = onA.feature, c.paramA = onA.param;
+  c.featureB = s.feature, c.paramB = s.param;
   normalFromPoints(c);
   return c;
 }
 
 /// The same from a point of B's surface (A's closest point to it).
-Contact remeasureFromB(const Eigen::Vector3d& pB_W, const Model& a, const Eigen::Isometry3d& X_WA,
-                       const Eigen::Isometry3d& X_AW, int featureB) {
-  const SurfacePoint s = a.closestPoint(X_AW * pB_W);
+Contact remeasureFromB(const Eigen::Vector3d& pB_W, const Place& onB, const Model& a, const Place& nearA,
+                       const Eigen::Isometry3d& X_WA, const Eigen::Isometry3d& X_AW, contact::WarmProjections* local) {
+  const SurfacePoint s = contact::projectOnto(local, a, X_AW * pB_W, nearA.feature, nearA.param);
   Contact c;
   c.pointA = X_WA * s.point;
   c.pointB = pB_W;
   c.distance = s.signedDistance;
   c.errorBound = s.error;
   c.normal = X_WA.linear() * s.normal;
-  c.featureA = s.feature;
-  c.featureB = featureB;
+  c.featureA = s.feature, c.paramA = s.param;
+  c.featureB = onB.feature, c.paramB = onB.param;
   normalFromPoints(c);
   return c;
 }
 
 /// The poses a local update needs, inverted and composed once per call rather than once per cached contact.
 struct UpdateFrames {
-  UpdateFrames(const Eigen::Isometry3d& X_WA, const Eigen::Isometry3d& X_WB, const Eigen::Isometry3d& X_AB0, double slack)
+  UpdateFrames(const Eigen::Isometry3d& X_WA, const Eigen::Isometry3d& X_WB, const Eigen::Isometry3d& X_AB0, double slack,
+               contact::WarmProjections* local)
       : X_WA(X_WA), X_WB(X_WB), X_AW(X_WA.inverse()), X_BW(X_WB.inverse()), X_WB_fromCachedA(X_WB * X_AB0.inverse()),
-        slack(slack) {}
+        slack(slack), local(local) {}
   const Eigen::Isometry3d& X_WA;
   const Eigen::Isometry3d& X_WB;
   const Eigen::Isometry3d X_AW, X_BW;
   const Eigen::Isometry3d X_WB_fromCachedA;  ///< a point of B cached in A's frame at the search → world now
   const double slack;                        ///< deepen()'s
+  contact::WarmProjections* const local;     ///< the cache's local projections
 };
 
 /// The same contact with the roles of A and B exchanged.
@@ -113,6 +127,7 @@ Contact swapped(const Contact& c) {
   Contact s = c;
   std::swap(s.pointA, s.pointB);
   std::swap(s.featureA, s.featureB);
+  std::swap(s.paramA, s.paramB);
   s.normal = -c.normal;
   return s;
 }
@@ -142,8 +157,8 @@ Contact deepen(const Contact& c, const Eigen::Vector3d& n, const Model& a, const
   Contact best = c;
   double lastMove = std::numeric_limits<double>::infinity();
   for (int round = 0; round < steps.rounds; ++round) {
-    const SurfacePoint s = a.closestPoint(X_AW * (best.pointA + along));
-    const Contact next = remeasureFromA(X_WA * s.point, b, X_WB, X_BW, s.feature);
+    const SurfacePoint s = contact::projectOnto(steps.local, a, X_AW * (best.pointA + along), best.featureA, best.paramA);
+    const Contact next = remeasureFromA(X_WA * s.point, {s.feature, s.param}, b, placeB(best), X_WB, X_BW, steps.local);
     if (!(next.distance <= best.distance + steps.slack)) break;
     if (next.distance < 0 && next.normal.dot(n) < kDeepenInsideAgreement) break;  // another face's depth
     const double move = (next.pointA - best.pointA).norm();
@@ -175,14 +190,14 @@ Contact deepenBoth(const Contact& c, const Model& a, const Eigen::Isometry3d& X_
 /// over the radius of curvature.
 Contact remeasure(const Contact& cached_A, const Model& a, const Model& b, const UpdateFrames& f) {
   const Eigen::Vector3d pB_W = f.X_WB_fromCachedA * cached_A.pointB;  // B's point rides with B
-  Contact c = remeasureFromA(f.X_WA * cached_A.pointA, b, f.X_WB, f.X_BW, cached_A.featureA);
+  Contact c = remeasureFromA(f.X_WA * cached_A.pointA, placeA(cached_A), b, placeB(cached_A), f.X_WB, f.X_BW, f.local);
   if (a.isSolid()) {  // without an inside, B's point would read an unsigned distance
-    const Contact fromB = remeasureFromB(pB_W, a, f.X_WA, f.X_AW, cached_A.featureB);
+    const Contact fromB = remeasureFromB(pB_W, placeB(cached_A), a, placeA(cached_A), f.X_WA, f.X_AW, f.local);
     if (fromB.distance < c.distance) c = fromB;
   }
   const Eigen::Vector3d n = f.X_WB_fromCachedA.linear() * cached_A.normal;
   c.normal = n;
-  c = deepenBoth(c, a, f.X_WA, f.X_AW, b, f.X_WB, f.X_BW, {kDeepenRoundsPerUpdate, f.slack});
+  c = deepenBoth(c, a, f.X_WA, f.X_AW, b, f.X_WB, f.X_BW, {kDeepenRoundsPerUpdate, f.slack, f.local});
   c.normal = n;
   const double measured = c.distance;
   c.distance = (c.pointB - c.pointA).dot(n);
@@ -207,7 +222,8 @@ void fillPatch(const Model& a, const Eigen::Isometry3d& X_WA, const Model& b, co
       const Eigen::Matrix3d tilt = Eigen::AngleAxisd(sign * kPatchTilt, axis).toRotationMatrix();
       const Eigen::Vector3d dir_A = X_WA.linear().transpose() * (tilt.transpose() * n);
       const Eigen::Vector3d pA = a.support(dir_A);
-      Contact c = remeasureFromA(X_WA * pA, b, X_WB, X_BW, a.closestPoint(pA).feature);
+      const SurfacePoint onA = a.closestPoint(pA);
+      Contact c = remeasureFromA(X_WA * pA, {onA.feature, onA.param}, b, {}, X_WB, X_BW, nullptr);
       if (c.distance > margin) continue;
       found.push_back(deepen(c, c.normal, a, X_WA, X_AW, b, X_WB, X_BW, {kDeepenRounds, slack}));
     }
@@ -338,16 +354,21 @@ void checkOptions(const ManifoldOptions& o) {
 /// The contacts at one pose of A (the true one, or A lifted off B), through the cache when it holds.
 std::vector<Contact> contactsAt(const Model& a, const Eigen::Isometry3d& X_WA, const Model& b,
                                 const Eigen::Isometry3d& X_WB, double margin, const QueryOptions& dial, bool patch,
-                                ContactCache* cache) {
+                                bool local, ContactCache* cache) {
   const double tol = dial.tolerance;
   const Eigen::Isometry3d X_AB = X_WA.inverse() * X_WB;
   std::vector<Contact> out;
   if (cache && cache->valid && relativeMotion(a, b, cache->X_AB, X_AB) <= cache->guard) {
     ++cache->localUpdates;
-    const UpdateFrames frames(X_WA, X_WB, cache->X_AB, kDeepenSlackInTolerances * tol);
+    contact::WarmProjections* projections = cache->projections.get();
+    const UpdateFrames frames(X_WA, X_WB, cache->X_AB, kDeepenSlackInTolerances * tol, projections);
     for (const Contact& c : cache->contacts) {
       const Contact now = remeasure(c, a, b, frames);
       if (now.distance <= margin) out.push_back(now);
+    }
+    if (projections) {
+      cache->localProjections = projections->work().steps + projections->work().newton;
+      cache->projectionFallbacks = projections->work().fallbacks;
     }
     contact::mergeDuplicates(out, 4 * tol);
     return out;
@@ -362,12 +383,25 @@ std::vector<Contact> contactsAt(const Model& a, const Eigen::Isometry3d& X_WA, c
   cache->X_AB = X_AB;
   cache->guard = guard;
   cache->contacts.clear();
-  const Eigen::Isometry3d X_AW = X_WA.inverse();
+  const bool nurbsA = a.type() == ModelType::Nurbs, nurbsB = b.type() == ModelType::Nurbs;
+  if (!local || !(nurbsA || nurbsB))
+    cache->projections.reset();
+  else if (!(cache->projections && cache->projections->serves(a, b)))
+    cache->projections = std::make_shared<contact::WarmProjections>(a, b);
+  const Eigen::Isometry3d X_AW = X_WA.inverse(), X_BW = X_WB.inverse();
   for (const Contact& c : all) {
     Contact local = c;
     local.pointA = X_AW * c.pointA;
     local.pointB = X_AW * c.pointB;
     local.normal = X_AW.linear() * c.normal;
+    // A NURBS point's (u, v) is where the local projections start: read it exactly once per search (the
+    // routines that found the contact may not have kept it).
+    const auto place = [](const Model& m, const Eigen::Vector3d& p, int& feature, Eigen::Vector2d& param) {
+      const SurfacePoint s = m.closestPoint(p);
+      feature = s.feature, param = s.param;
+    };
+    if (nurbsA) place(a, local.pointA, local.featureA, local.paramA);
+    if (nurbsB) place(b, X_BW * c.pointB, local.featureB, local.paramB);
     cache->contacts.push_back(local);
     if (c.distance <= margin) out.push_back(c);
   }
@@ -396,7 +430,7 @@ std::vector<Contact> manifoldOfModels(const Model& a, const Eigen::Isometry3d& X
     const Eigen::Vector3d n = X_WB.linear() * cache->liftNormal_B;
     Eigen::Isometry3d X_WAl = X_WA;
     X_WAl.pretranslate(-skin * n);
-    out = contactsAt(a, X_WAl, b, X_WB, options.margin + skin, dial, options.fillPatch, cache);
+    out = contactsAt(a, X_WAl, b, X_WB, options.margin + skin, dial, options.fillPatch, options.localWarmStart, cache);
     lifted = std::none_of(out.begin(), out.end(), [&](const Contact& c) { return c.distance < -tol; });
     if (lifted) {
       for (Contact& c : out) {
@@ -413,7 +447,7 @@ std::vector<Contact> manifoldOfModels(const Model& a, const Eigen::Isometry3d& X
       cache->valid = false;  // its contacts belong to the lifted pose
     }
   }
-  if (!lifted) out = contactsAt(a, X_WA, b, X_WB, options.margin, dial, options.fillPatch, cache);
+  if (!lifted) out = contactsAt(a, X_WA, b, X_WB, options.margin, dial, options.fillPatch, options.localWarmStart, cache);
   contact::mergeDuplicates(out, 4 * tol);
   if (cache) {
     // The next step lifts along this step's deepest normal (kept in B's frame: a ball rolling on a floor turns,
