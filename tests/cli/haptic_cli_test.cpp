@@ -45,9 +45,10 @@ TEST(CliHaptic, DefaultSceneJsonAndPlots) {
   // Minima are born on the faceted bumpy mesh between global passes (tracker.h: "Discrete models gain minima by
   // birth"); the next pass finds them. Measured: 37 of 4800 updates, nearly all the NURBS ball on the mesh.
   EXPECT_LE(j["global_misses"].get<int>(), 80);
-  // A minimum found late by a pass enters with the force it already has: stiffness 0.5 x at most ~40 mm inside
-  // the cutoff. Measured: 12.3 (the ball on the mesh); everywhere else < 7.
-  EXPECT_LT(j["max_force_jump"].get<double>(), 20);
+  // Minima pushing the same way share one spring and a jump between branches is not damped (tracker.h, "Forces"):
+  // measured 1.69 against a contact force of about 5 (12.3 when each facet minimum pushed with the full spring
+  // and a jump's distance change was damped as a speed).
+  EXPECT_LT(j["max_force_jump"].get<double>(), 3);
 
   // One per probe-environment pair and one total per probe.
   for (const char* name : {"force_nurbs_ball_nurbs_hill.png", "force_nurbs_ball_bumpy_mesh.png",

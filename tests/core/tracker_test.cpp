@@ -254,6 +254,25 @@ TEST(Tracker, PenaltyForceTorqueAndDamping) {
   EXPECT_NEAR(tracker.update(Iso(Eigen::Translation3d(0, 0, 1.01)), X_WB).force.z(), 4, 1e-6);
 }
 
+TEST(Tracker, MinimaPushingTheSameWayShareOneSpring) {
+  // A mesh cube face-down over a box: its four bottom corners are four minima with the same normal. Together they
+  // push as one spring, k (d0 − d) = 100 × 0.04 = 4, not four times that, each with a quarter.
+  TrackerOptions o;
+  o.globalPass = unidist::GlobalPassMode::Inline;
+  o.cutoff = 0.05;
+  o.stiffness = 100;
+  const meshfix::Soup cube = meshfix::gridBox(Vec(0.5, 0.5, 0.5), 1);
+  Tracker tracker(std::make_shared<unidist::TriangleMesh>(cube.vertices, cube.triangles),
+                  std::make_shared<unidist::Box>(Vec(2, 2, 0.5)), o);
+  const Iso X_WB = Iso(Eigen::Translation3d(0, 0, -0.5));  // top face at z = 0
+  const Iso X_WA = Iso(Eigen::Translation3d(0.1, -0.2, 0.51));
+  tracker.update(X_WA, X_WB);
+  const unidist::TrackerUpdate& u = tracker.update(X_WA, X_WB);
+  ASSERT_GE(u.minima, 2);
+  EXPECT_NEAR((u.force - Vec(0, 0, 4)).norm(), 0, 1e-6);
+  for (const unidist::TrackedMinimum& m : tracker.minima()) EXPECT_NEAR(m.force, 4.0 / u.minima, 1e-6);
+}
+
 TEST(Tracker, RejectsBadInput) {
   const auto s = std::make_shared<unidist::Sphere>(1.0);
   auto make = [&](auto edit) {

@@ -41,9 +41,12 @@
 // Discrete models (clouds, facets) gain minima by birth all the time (a point becoming the nearest, a vertex
 // passing an edge): those are found by the next pass, not by the local updates.
 //
-// Forces (on A, world frame): per reported minimum i with distance d_i < d0 = penaltyDistance,
-// f_i = max(0, k·(d0 − d_i) − c·ḋ_i) along −n_i (n_i points from A to B: A is pushed away), ḋ_i the change of d_i
-// since the previous update divided by timeStep (0 for a new minimum); torque Σ (p_A,i − r) × F_i about the
+// Forces (on A, world frame): per reported minimum i with distance d_i < d0 = penaltyDistance, its push
+// p_i = max(0, k·(d0 − d_i) − c·ḋ_i) (ḋ_i the change of d_i since the previous update divided by timeStep; 0 for
+// a new minimum and for a change larger than the pair's relative motion, a jump onto another branch), and minima pushing the same way share it: f_i = p_i² / Σ_j w_ij·p_j along −n_i (n_i points from
+// A to B: A is pushed away), w_ij = 1 for normals within 15°, 0 beyond 45°, smooth between. A flat contact that a
+// faceted surface splits into one, two or five minima thus pushes as one (n equal pushes give one p), while
+// contacts on different sides (a groove's two walls) add; torque Σ (p_A,i − r) × F_i about the
 // reference point r (given in A's frame). A minimum enters and leaves at the cutoff ≥ d0, where its force is 0,
 // so the force stays continuous as minima come and go.
 //

@@ -76,6 +76,8 @@ struct Tracker::Impl {
   std::vector<TrackedMinimum> minima;
   TrackerUpdate last;
   TrackerCounters counters;
+  Eigen::Isometry3d previousX_AB = Eigen::Isometry3d::Identity();  // pose of the last update (the damping's jump test)
+  bool hasPreviousPose = false;
   long nextId = 1;
   // Global pass state: the relative pose and update count of the last pass started, and the pass in flight.
   bool passed = false;
@@ -155,13 +157,20 @@ struct Tracker::Impl {
     tracks = std::move(kept);
   }
 
-  void report(const Eigen::Isometry3d& X_WA, const Eigen::Isometry3d& X_WB) {
+  void report(const Eigen::Isometry3d& X_WA, const Eigen::Isometry3d& X_WB, const Eigen::Isometry3d& X_AB) {
     minima.clear();
-    const Eigen::Vector3d ref_W = X_WA * options.referencePoint_A;
+    std::vector<double> pushes;
+    // A minimum followed continuously changes its distance by at most the pair's relative motion; a larger change
+    // is a jump onto another branch (converging onto a neighbour, a facet's minimum passing to the next), whose
+    // rate is no speed: damping it gave single-update force spikes of twice the contact force.
+    const double motion = hasPreviousPose ? relativeMotion(a, b, previousX_AB, X_AB) : 0.0;
+    previousX_AB = X_AB;
+    hasPreviousPose = true;
     for (Track& t : tracks) {
       ++t.age;
       const double d = t.m.distance;
-      const double rate = t.hasPrevious ? (d - t.previous) / options.timeStep : 0.0;
+      const double change = t.hasPrevious ? d - t.previous : 0.0;
+      const double rate = std::abs(change) <= motion + options.tolerance ? change / options.timeStep : 0.0;
       t.previous = d;
       t.hasPrevious = true;
       if (d > options.cutoff) continue;
@@ -175,17 +184,34 @@ struct Tracker::Impl {
       r.age = t.age;
       r.id = t.id;
       const double push = options.stiffness * (options.penaltyDistance - d) - options.damping * rate;
-      r.force = d < options.penaltyDistance ? std::max(0.0, push) : 0.0;
-      const Eigen::Vector3d F = -r.force * r.normal;  // A is pushed away from B
-      last.force += F;
-      last.torque += (r.pointA - ref_W).cross(F);
+      pushes.push_back(d < options.penaltyDistance ? std::max(0.0, push) : 0.0);
       minima.push_back(r);
     }
+    shareForces(pushes, X_WA * options.referencePoint_A);
     std::sort(minima.begin(), minima.end(), [](const TrackedMinimum& x, const TrackedMinimum& y) {
       return x.distance < y.distance;
     });
     last.minima = static_cast<int>(minima.size());
     last.deepest = minima.empty() ? std::numeric_limits<double>::infinity() : minima.front().distance;
+  }
+
+  /// Minima pushing the same way share one spring (tracker.h, "Forces"): minimum i gets push_i² / Σ_j w_ij push_j,
+  /// w_ij = 1 for normals within 15°, 0 beyond 45°, smooth between — so a flat contact that a faceted surface splits
+  /// into one, two or five minima pushes as one, and a minimum entering at zero push changes nothing.
+  void shareForces(const std::vector<double>& pushes, const Eigen::Vector3d& ref_W) {
+    const double lo = std::sqrt(0.5), hi = 0.96592582628906829;  // cos 45°, cos 15°
+    for (std::size_t i = 0; i < minima.size(); ++i) {
+      double shared = 0;
+      for (std::size_t j = 0; j < minima.size(); ++j) {
+        const double x = std::clamp((minima[i].normal.dot(minima[j].normal) - lo) / (hi - lo), 0.0, 1.0);
+        shared += (i == j ? 1.0 : x * x * (3 - 2 * x)) * pushes[j];
+      }
+      TrackedMinimum& r = minima[i];
+      r.force = shared > 0 ? pushes[i] * pushes[i] / shared : 0.0;
+      const Eigen::Vector3d F = -r.force * r.normal;  // A is pushed away from B
+      last.force += F;
+      last.torque += (r.pointA - ref_W).cross(F);
+    }
   }
 
   /// A local update reads its sign from the locally closest feature, which is right only for the globally
@@ -221,7 +247,7 @@ struct Tracker::Impl {
       startPass(X_AB, options.globalPass == GlobalPassMode::Inline || !passed);
     dropFalseOverlaps(X_AB);
     dedupeAndDrop();
-    report(X_WA, X_WB);
+    report(X_WA, X_WB, X_AB);
   }
 };
 
@@ -256,6 +282,7 @@ void Tracker::reset() {
   impl_->tracks.clear();
   impl_->minima.clear();
   impl_->passed = false;
+  impl_->hasPreviousPose = false;
   impl_->last = TrackerUpdate{};
 }
 
