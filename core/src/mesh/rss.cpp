@@ -182,20 +182,30 @@ Rss mergeRss(const Eigen::Matrix3d& axes, const Rss& a, const Rss& b) {
   return fromExtents(axes, origin, lo, hi);
 }
 
+Rss posedRss(const Rss& b, const Eigen::Matrix3d& R, const Eigen::Vector3d& t) {
+  Rss p = b;
+  p.center = R * b.center + t;
+  p.axes = R * b.axes;
+  return p;
+}
+
 double rssLowerBound(const Rss& a, const Rss& b, const Eigen::Matrix3d& R, const Eigen::Vector3d& t, double enough) {
+  return rssLowerBound(a, posedRss(b, R, t), enough);
+}
+
+double rssLowerBound(const Rss& a, const Rss& b, double enough) {
   // Everything in a's rectangle frame: a = [-ha0, ha0] × [-ha1, ha1] × {0}; b = d + s m0 + u m1.
-  const Eigen::Matrix3d toA = a.axes.transpose() * R;
-  const Eigen::Matrix3d M = toA * b.axes;
-  const Eigen::Vector3d d = toA * b.center + a.axes.transpose() * (t - a.center);
+  const Eigen::Matrix3d M = a.axes.transpose() * b.axes;
+  const Eigen::Vector3d d = a.axes.transpose() * (b.center - a.center);
   const double ha0 = a.half[0], ha1 = a.half[1], hb0 = b.half[0], hb1 = b.half[1];
   const auto m0 = M.col(0), m1 = M.col(1), m2 = M.col(2);
   const auto gapAlong = [&](const Eigen::Vector3d& u) {
     return std::abs(u.dot(d)) - ha0 * std::abs(u.x()) - ha1 * std::abs(u.y()) - hb0 * std::abs(u.dot(m0)) -
            hb1 * std::abs(u.dot(m1));
   };
-  // Along a's normal and along b's normal.
+  // Along a's normal and along b's normal (orthogonal to b's sides, which then add nothing).
   double gap = std::abs(d.z()) - hb0 * std::abs(m0.z()) - hb1 * std::abs(m1.z());
-  gap = std::max(gap, gapAlong(m2));
+  gap = std::max(gap, std::abs(m2.dot(d)) - ha0 * std::abs(m2.x()) - ha1 * std::abs(m2.y()));
   const double radii = a.radius + b.radius;
   if (gap - radii >= enough) return gap - radii;
   // Along the direction between a closest-pair estimate: alternating projection from b's centre.

@@ -55,4 +55,10 @@ Rss mergeRss(const Eigen::Matrix3d& axes, const Rss& a, const Rss& b);
 double rssLowerBound(const Rss& a, const Rss& b, const Eigen::Matrix3d& R, const Eigen::Vector3d& t,
                      double enough = std::numeric_limits<double>::infinity());
 
+/// The same for b given in a's frame already (a search that meets one volume many times poses it once).
+double rssLowerBound(const Rss& a, const Rss& b, double enough = std::numeric_limits<double>::infinity());
+
+/// b moved by the rotation R and translation t.
+Rss posedRss(const Rss& b, const Eigen::Matrix3d& R, const Eigen::Vector3d& t);
+
 }  // namespace unidist::mesh

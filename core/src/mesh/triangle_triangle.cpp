@@ -137,9 +137,15 @@ TriangleTriangleClosest closestTriangleTriangle(const Eigen::Vector3d* a, const 
   double bestSq = std::numeric_limits<double>::infinity();
   const double cutoffSq = cutoff * cutoff;
   bool found = false;
+  // A vertex is also at least as far from the other triangle as from that triangle's box.
+  const Eigen::Vector3d boxLoA = a[0].cwiseMin(a[1]).cwiseMin(a[2]), boxHiA = a[0].cwiseMax(a[1]).cwiseMax(a[2]);
+  const Eigen::Vector3d boxLoB = b[0].cwiseMin(b[1]).cwiseMin(b[2]), boxHiB = b[0].cwiseMax(b[1]).cwiseMax(b[2]);
+  const auto boxSq = [](const Eigen::Vector3d& q, const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) {
+    return (lo - q).cwiseMax(q - hi).cwiseMax(0.0).squaredNorm();
+  };
   for (int k = 0; k < 3; ++k) {
     const double limit = std::min(bestSq, cutoffSq);
-    if (sa[k] * sa[k] < limit) {
+    if (sa[k] * sa[k] < limit && boxSq(a[k], boxLoB, boxHiB) < limit) {
       const TriangleClosest ca = closestOnTriangle(a[k], b[0], b[1], b[2], nb);
       if (ca.squaredDistance < bestSq) {
         bestSq = ca.squaredDistance;
@@ -148,7 +154,8 @@ TriangleTriangleClosest closestTriangleTriangle(const Eigen::Vector3d* a, const 
         found = true;
       }
     }
-    if (sb[k] * sb[k] < std::min(bestSq, cutoffSq)) {
+    const double limitB = std::min(bestSq, cutoffSq);
+    if (sb[k] * sb[k] < limitB && boxSq(b[k], boxLoA, boxHiA) < limitB) {
       const TriangleClosest cb = closestOnTriangle(b[k], a[0], a[1], a[2], na);
       if (cb.squaredDistance < bestSq) {
         bestSq = cb.squaredDistance;

@@ -39,6 +39,66 @@ struct Traversal {
   bool exhausted = false;
 };
 
+/// B's node volumes turned into A's frame, each once, for a search that meets the same B nodes again and again
+/// (linked torus_1k–torus_20k: ~22,000 RSS bounds meet ~350 of the 1k torus's nodes). The array is made only once the search
+/// has met as many node pairs as a quarter of B's nodes, so a short search never pays for it; until then each
+/// volume is turned where it is needed.
+class PosedVolumes {
+ public:
+  struct Box {
+    Eigen::Vector3d center, half;
+  };
+  PosedVolumes(const mesh::Bvh& tree, const mesh::Rss* rss, const Eigen::Matrix3d& R, const Eigen::Vector3d& t)
+      : nodes_(tree.nodes.data()), count_(tree.nodes.size()), rss_(rss), R_(R), absR_(R.cwiseAbs()), t_(t) {}
+
+  /// An axis-aligned box in A's frame holding B's node j.
+  Box box(std::uint32_t j, long nodePairs) {
+    if (!ready(nodePairs)) return turnBox(j);
+    std::uint32_t& slot = boxSlot_[j];
+    if (slot == kNone) {
+      slot = static_cast<std::uint32_t>(boxes_.size());
+      boxes_.push_back(turnBox(j));
+    }
+    return boxes_[slot];
+  }
+  /// rssLowerBound(a, B's node j's RSS) (both have RSS volumes).
+  double rssLowerBound(const mesh::Rss& a, std::uint32_t j, long nodePairs, double enough) {
+    if (!ready(nodePairs)) return mesh::rssLowerBound(a, rss_[j], R_, t_, enough);
+    std::uint32_t& slot = rssSlot_[j];
+    if (slot == kNone) {
+      slot = static_cast<std::uint32_t>(posed_.size());
+      posed_.push_back(mesh::posedRss(rss_[j], R_, t_));
+    }
+    return mesh::rssLowerBound(a, posed_[slot], enough);
+  }
+
+ private:
+  static constexpr std::uint32_t kNone = ~0u;
+  Box turnBox(std::uint32_t j) const {
+    const mesh::BvhNode& y = nodes_[j];
+    const Eigen::Vector3d yc(0.5 * (y.lo[0] + y.hi[0]), 0.5 * (y.lo[1] + y.hi[1]), 0.5 * (y.lo[2] + y.hi[2]));
+    const Eigen::Vector3d yh(0.5 * (y.hi[0] - y.lo[0]), 0.5 * (y.hi[1] - y.lo[1]), 0.5 * (y.hi[2] - y.lo[2]));
+    return {R_ * yc + t_, absR_ * yh};
+  }
+  // Per node, where its turned volumes are (kNone: not yet): only the volumes met are ever written, so making
+  // the cache costs two index arrays, not an array of volumes (env/rob: 40–176 node pairs in all).
+  bool ready(long nodePairs) {
+    if (!boxSlot_.empty()) return true;
+    if (static_cast<std::size_t>(nodePairs) * 4 < count_) return false;
+    boxSlot_.assign(count_, kNone);
+    rssSlot_.assign(count_, kNone);
+    return true;
+  }
+  const mesh::BvhNode* nodes_;
+  const std::size_t count_;
+  const mesh::Rss* rss_;
+  const Eigen::Matrix3d R_, absR_;
+  const Eigen::Vector3d t_;
+  std::vector<std::uint32_t> boxSlot_, rssSlot_;
+  std::vector<Box> boxes_;
+  std::vector<mesh::Rss> posed_;
+};
+
 /// Best-first search over node pairs (a min-heap on the lower bound), pruning pairs whose lower bound is
 /// within `prune` of the best distance. leaf(nodeA, nodeB, best, false) evaluates a leaf pair exactly;
 /// leaf(nodeA, nodeB, best, true) measures only its nearest item pair (an upper bound to start from).
@@ -50,21 +110,20 @@ Traversal traverse(const Side& A, const Side& B, const Eigen::Isometry3d& X_AB, 
   const BoundingSphere* sa = A.spheres->data();
   const BoundingSphere* sb = B.spheres->data();
   const Eigen::Matrix3d R = X_AB.linear();
-  const Eigen::Matrix3d absR = R.cwiseAbs();
   const Eigen::Vector3d t = X_AB.translation();
   const mesh::Rss* ra = A.rss && B.rss ? A.rss->data() : nullptr;
   const mesh::Rss* rb = ra ? B.rss->data() : nullptr;
 
+  Traversal out;
+  PosedVolumes posedB(*B.tree, rb, R, t);
   // The cheap bounds: the gap between A's box and B's box turned into A's frame, and without RSS volumes the
   // ball–ball gap (with them the balls changed the node-pair count by under 1 % on the linked tori and the
   // env/rob poses, and cost 2 % of the time).
   auto cheapLower = [&](std::uint32_t i, std::uint32_t j) {
     const mesh::BvhNode& x = na[i];
-    const mesh::BvhNode& y = nb[j];
-    const Eigen::Vector3d yc(0.5 * (y.lo[0] + y.hi[0]), 0.5 * (y.lo[1] + y.hi[1]), 0.5 * (y.lo[2] + y.hi[2]));
-    const Eigen::Vector3d yh(0.5 * (y.hi[0] - y.lo[0]), 0.5 * (y.hi[1] - y.lo[1]), 0.5 * (y.hi[2] - y.lo[2]));
-    const Eigen::Vector3d c = R * yc + t;
-    const Eigen::Vector3d h = absR * yh;
+    const PosedVolumes::Box y = posedB.box(j, out.nodePairs);
+    const Eigen::Vector3d& c = y.center;
+    const Eigen::Vector3d& h = y.half;
     double s = 0;
     for (int k = 0; k < 3; ++k) {
       const double below = x.lo[k] - (c[k] + h[k]), above = (c[k] - h[k]) - x.hi[k];
@@ -85,10 +144,11 @@ Traversal traverse(const Side& A, const Side& B, const Eigen::Isometry3d& X_AB, 
   };
   // The RSS bound on top of the cheap ones (below `cutoff` only: above it the pair is pruned anyway).
   auto tighten = [&](Entry& e, double cutoff) {
-    if (!e.tight && e.lb < cutoff) e.lb = std::max(e.lb, mesh::rssLowerBound(ra[e.a], rb[e.b], R, t, cutoff));
+    if (!e.tight && e.lb < cutoff) {
+      e.lb = std::max(e.lb, posedB.rssLowerBound(ra[e.a], e.b, out.nodePairs, cutoff));
+    }
     e.tight = true;
   };
-  Traversal out;
   double minPruned = std::numeric_limits<double>::infinity();
   // The children pairs with the cheap bounds only: the RSS bound is added when a pair is taken up, so pairs
   // still queued when the search stops never pay for it.
@@ -341,8 +401,10 @@ class TrianglePairs {
         for (; k > 0 && cand[k - 1].lb > lb; --k) cand[k] = cand[k - 1];  // insertion: ascending bounds
         cand[k] = {lb, m, l};
       }
-    for (int k = 0; k < count && cand[k].lb < bst.distance; ++k)
+    for (int k = 0; k < count && cand[k].lb < bst.distance; ++k) {
+      if (edgeAxesApart(A[cand[k].m], B[cand[k].l], bst.distance)) continue;
       if (measure(A[cand[k].m], B[cand[k].l], bst) || nearestOnly) return;
+    }
   }
 
  private:
@@ -397,6 +459,28 @@ class TrianglePairs {
     }
     return std::max({lb, slabGap(a.n, a.v[0], b.v), slabGap(b.n, b.v[0], a.v)});
   }
+  /// Whether a direction across an edge of each triangle (edge × edge) proves them at least `cut` apart: the
+  /// remaining separating directions after the boxes, centroid line and normals of lowerBound, exact for pairs
+  /// closest edge to edge. Tried before the exact routine only (it costs a fifth of it): linked
+  /// torus_1k–torus_20k, where nearly every pair measured lies 1e-3–1e-2 beyond the minimum, 29 % fewer
+  /// instructions per query. Projections from the centroids, so far from the origin they stay accurate.
+  static bool edgeAxesApart(const Posed& a, const Posed& b, double cut) {
+    const Eigen::Vector3d d = b.c - a.c;
+    const double cc = cut * cut;
+    for (int i = 0; i < 3; ++i) {
+      const Eigen::Vector3d ea = a.v[(i + 1) % 3] - a.v[i];
+      for (int j = 0; j < 3; ++j) {
+        const Eigen::Vector3d u = ea.cross(b.v[(j + 1) % 3] - b.v[j]);
+        const double pa0 = u.dot(a.off[0]), pa1 = u.dot(a.off[1]), pa2 = u.dot(a.off[2]);
+        const double ud = u.dot(d);
+        const double pb0 = ud + u.dot(b.off[0]), pb1 = ud + u.dot(b.off[1]), pb2 = ud + u.dot(b.off[2]);
+        const double gap = std::max(std::min({pb0, pb1, pb2}) - std::max({pa0, pa1, pa2}),
+                                    std::min({pa0, pa1, pa2}) - std::max({pb0, pb1, pb2}));
+        if (gap > 0 && gap * gap >= cc * u.squaredNorm()) return true;
+      }
+    }
+    return false;
+  }
   /// Gap between the plane through o with normal n and the triangle t (negative when it straddles).
   static double slabGap(const Eigen::Vector3d& n, const Eigen::Vector3d& o, const Eigen::Vector3d* t) {
     const double h0 = n.dot(t[0] - o), h1 = n.dot(t[1] - o), h2 = n.dot(t[2] - o);
@@ -429,34 +513,48 @@ class TrianglePairs {
 DistanceResult meshMesh(const PosedModel& a, const PosedModel& b, const QueryContext& ctx, PairFn overlapFn) {
   const auto& ma = static_cast<const TriangleMesh&>(a.model);
   const auto& mb = static_cast<const TriangleMesh&>(b.model);
-  const mesh::MeshBvh& ha = ma.bvh();
-  const mesh::MeshBvh& hb = mb.bvh();
   const Eigen::Isometry3d X_AB = a.X_WM.inverse(Eigen::Isometry) * b.X_WM;
-  const double scale = coordinateScale(ma, mb, X_AB);
+  const Eigen::Isometry3d X_BA = X_AB.inverse(Eigen::Isometry);
   const auto& va = ma.vertices();
   const auto& vb = mb.vertices();
-  const auto& ta = ma.triangles();
-  const auto& tb = mb.triangles();
 
-  Best best;
-  TrianglePairs leaf(ma, mb, ha, hb, X_AB);
-  const Side sideA{&ha.tree, &ha.spheres, &ha.rss(va, ta)}, sideB{&hb.tree, &hb.spheres, &hb.rss(vb, tb)};
-  Traversal tr = traverse(sideA, sideB, X_AB, pruneOf(ctx, scale), budgetOf(ctx), best, leaf);
+  // The search runs in the frame of the mesh with more triangles (F) and turns the other's (P's) volumes and
+  // leaves: the coarser side's leaves stay while the finer side's change, and its fewer nodes are met more
+  // often (linked torus_1k–torus_20k with the 1k torus as the frame: 5,042 leaf loads turned, against 794).
+  const bool swapped = mb.triangles().size() > ma.triangles().size();
+  const TriangleMesh& mf = swapped ? mb : ma;
+  const TriangleMesh& mp = swapped ? ma : mb;
+  const Eigen::Isometry3d& X_FP = swapped ? X_BA : X_AB;
+  const mesh::MeshBvh& hf = mf.bvh();
+  const mesh::MeshBvh& hp = mp.bvh();
+  const double scale = std::max(coordinateScale(ma, mb, X_AB), coordinateScale(mf, mp, X_FP));
+
+  Best best;  // in F's frame until the end
+  TrianglePairs leaf(mf, mp, hf, hp, X_FP);
+  const Side sideF{&hf.tree, &hf.spheres, &hf.rss(mf.vertices(), mf.triangles())};
+  const Side sideP{&hp.tree, &hp.spheres, &hp.rss(mp.vertices(), mp.triangles())};
+  Traversal tr = traverse(sideF, sideP, X_FP, pruneOf(ctx, scale), budgetOf(ctx), best, leaf);
 
   const bool solidA = ma.isSolid(), solidB = mb.isSolid();
   if ((solidA || solidB) && best.distance > 0 && !(tr.lowerBound > 0) && !tr.exhausted) {
     // Closer than the pruning allowance: the pairs pruned may cross, and one vertex's containment cannot tell
     // crossing surfaces from apart ones. Apart must be proved (a positive lower bound) first: search exactly.
-    tr = traverse(sideA, sideB, X_AB, 0.0, budgetOf(ctx), best, leaf);
+    tr = traverse(sideF, sideP, X_FP, 0.0, budgetOf(ctx), best, leaf);
   }
   if (solidA || solidB) {
     if (best.distance <= 0) return overlap(a, b, ctx, true, overlapFn);
     // Apart surfaces: overlap only by containment (of a whole component when the other is open).
     if (solidA && (solidB ? ma.inside(X_AB * vb[0]) : solidContainsAny(ma, vb, X_AB))) return overlap(a, b, ctx, false, overlapFn);
-    const Eigen::Isometry3d X_BA = X_AB.inverse(Eigen::Isometry);
     if (solidB && (solidA ? mb.inside(X_BA * va[0]) : solidContainsAny(mb, va, X_BA))) return overlap(a, b, ctx, false, overlapFn);
   }
-  const Eigen::Vector3d zeroNormal = best.triA >= 0 ? ma.faceNormal(best.triA) : Eigen::Vector3d::UnitZ();
+  // Back into A's frame; at distance 0 the normal is F's face normal (B's turned into A's and reversed).
+  Eigen::Vector3d zeroNormal = best.triA >= 0 ? mf.faceNormal(best.triA) : Eigen::Vector3d::UnitZ();
+  if (swapped) {
+    std::swap(best.pA, best.pB);
+    best.pA = X_AB * best.pA;
+    best.pB = X_AB * best.pB;
+    if (best.triA >= 0) zeroNormal = -(X_AB.linear() * zeroNormal);
+  }
   DistanceResult r = finish(a, best, tr, scale, ctx, zeroNormal, "mesh-mesh-bvh");
   if ((solidA || solidB) && !(tr.lowerBound > 0) && r.distance > 0) {  // the budget ran out before apart was proved
     r.lowerBound = -std::numeric_limits<double>::infinity();
