@@ -3,7 +3,7 @@
 // analytic cases with known contacts: a box resting on a box (the four corners), two parallel tessellated
 // cylinders (the ends of the touching generator lines), a sphere mesh over a plane (its lowest vertex),
 // penetrating pairs (negative distance, the normal B must move along), the scales 1e-4 and 1e4, flat contacts
-// (corners only), the reduction to maxContacts, and bad options.
+// (corners only), the reduction to maxContacts, cloud points tied with the nearest, and bad options.
 #include "core/contact_oracle.h"
 #include "core/mesh_fixtures.h"
 #include "unidist/contacts.h"
@@ -14,6 +14,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <thread>
@@ -305,6 +306,38 @@ TEST(Contacts, OtherFamiliesGiveTheGlobalMinimum) {
       unidist::contacts(cloud, Iso::Identity(), unidist::Box(Vec(5, 5, 1)), Iso::Identity(), o);
   ASSERT_GE(cc.size(), 1u);
   for (const Contact& c : cc) EXPECT_NEAR(c.distance, 0.05, 1e-12);
+}
+
+TEST(Contacts, CloudPointsAsNearAsTheNearestAreAllKept) {
+  // The long-run stack's cloud slab (tests/longrun/slab.xyz: the face lattice of a 360 x 360 x 60 slab, 60 apart
+  // across, 30 through) with a ball cradled between four lattice points of its top face: all four are contacts,
+  // at one distance. Keeping one point per hierarchy leaf gave two of them, on a diagonal, which the ball rocked
+  // about in Bullet (docs/reliability.md, "Long runs").
+  std::vector<Vec> points;
+  for (int x = -180; x <= 180; x += 60)
+    for (int y = -180; y <= 180; y += 60)
+      for (int z = -30; z <= 30; z += 30)
+        if (z != 0 || std::abs(x) == 180 || std::abs(y) == 180) points.push_back(Vec(x, y, z));
+  ASSERT_EQ(points.size(), 122u);
+  const unidist::PointCloud cloud(points);
+  const unidist::Sphere ball(150.0);
+  const double rest = 30 + std::sqrt(150.0 * 150.0 - 2 * 30.0 * 30.0);  // centre height touching the four
+  ContactOptions o;
+  o.margin = 1.0;
+  for (const Vec& offset : {Vec(0, 0, 0.05), Vec(0, 0, -0.02), Vec(1e-7, -3e-8, 0.05), Vec(-2e-9, 5e-9, -0.02)}) {
+    const Vec centre = Vec(30, 30, rest) + offset;
+    std::vector<Contact> cs = unidist::contacts(cloud, Iso::Identity(), ball, pose(centre), o);
+    ASSERT_EQ(cs.size(), 4u) << "ball at " << centre.transpose();
+    std::sort(cs.begin(), cs.end(), [](const Contact& a, const Contact& b) {
+      return a.pointA.x() + 1e3 * a.pointA.y() < b.pointA.x() + 1e3 * b.pointA.y();
+    });
+    const Vec expected[4] = {Vec(0, 0, 30), Vec(60, 0, 30), Vec(0, 60, 30), Vec(60, 60, 30)};
+    for (int i = 0; i < 4; ++i) {
+      EXPECT_EQ(cs[i].pointA, expected[i]);
+      EXPECT_NEAR(cs[i].distance, (expected[i] - centre).norm() - 150.0, 1e-9);
+      EXPECT_NEAR(cs[i].distance, cs[0].distance, 1e-6);
+    }
+  }
 }
 
 TEST(Contacts, ConcurrentQueriesOnSharedModelsAgree) {

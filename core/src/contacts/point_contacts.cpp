@@ -3,8 +3,11 @@
 #include "cloud/point_tree.h"
 #include "mesh/bvh.h"
 
+#include <algorithm>
 #include <cmath>
 #include <unordered_map>
+#include <utility>
+#include <vector>
 
 namespace unidist::contact {
 namespace {
@@ -103,19 +106,23 @@ void cloudPointContacts(const PointCloud& c, const Eigen::Isometry3d& X_WC, cons
                         const Eigen::Isometry3d& X_WO, double margin, double tol, bool isA, std::vector<Contact>& out) {
   Field field(X_WC, o, X_WO);
   const cloud::PointTree& tree = c.tree();
+  std::vector<std::pair<std::uint32_t, SurfacePoint>> near;  // one leaf's points within the margin
   descend(tree.tree, tree.spheres, field, margin + tol, [&](const mesh::BvhNode& n) {
-    int best = -1;
-    SurfacePoint bestSp;
+    // The leaf's nearest point, and every other point as near within tol (ties, as for mesh vertices): keeping
+    // one of equals let rounding pick which, so a ball cradled by four equally near points got two of them, on a
+    // diagonal, a different two from step to step, and rocked about it.
+    near.clear();
+    double nearest = margin + tol;
     for (std::uint32_t s = n.first; s < n.first + n.count; ++s) {
       const std::uint32_t i = tree.tree.order[s];
       const SurfacePoint sp = field.at(c.points()[i]);
-      if (sp.signedDistance <= margin + tol && (best < 0 || sp.signedDistance < bestSp.signedDistance)) {
-        best = static_cast<int>(i);
-        bestSp = sp;
-      }
+      if (sp.signedDistance > margin + tol) continue;
+      nearest = std::min(nearest, sp.signedDistance);
+      near.emplace_back(i, sp);
     }
-    if (best >= 0)
-      out.push_back(makeContact(c.points()[static_cast<std::size_t>(best)], bestSp, X_WC, X_WO, isA, best));
+    for (const auto& [i, sp] : near)
+      if (sp.signedDistance <= nearest + tol)
+        out.push_back(makeContact(c.points()[i], sp, X_WC, X_WO, isA, static_cast<int>(i)));
   });
 }
 

@@ -1,11 +1,11 @@
-// Contacts from point queries: the vertices of a mesh (or the points of a cloud) against any other model.
-// A mesh vertex is kept when the other model's signed distance there is within the margin and no larger than
-// at any of its mesh neighbours (a local minimum over the vertex graph; ties allowed within tol) — so a box
-// resting on a plane gives its four bottom corners, and a mesh sunk into a solid its locally deepest vertices.
-// On a plateau (a vertex inside a flat region facing the other model, with an equally distant neighbour) only
-// the region's boundary vertices are kept. A cloud has no neighbours: each leaf of its hierarchy (at most four
-// nearby points) gives its nearest point. The mesh's / cloud's hierarchy is descended with a point query at each
-// node's ball centre (the signed distance is 1-Lipschitz, so a ball farther than its radius plus the margin
+// Contacts from point queries: the vertices of a mesh (or the points of a cloud) against any other model. A mesh
+// vertex is kept when the other model's signed distance there is within the margin and no larger than at any of its
+// mesh neighbours (a local minimum over the vertex graph; ties allowed within tol) — so a box resting on a plane
+// gives its four bottom corners, and a mesh sunk into a solid its locally deepest vertices. On a plateau (a vertex
+// inside a flat region facing the other model, with an equally distant neighbour) only the region's boundary
+// vertices are kept. A cloud has no neighbours: each leaf of its hierarchy (at most four nearby points) gives its
+// nearest point and the points as near within tol. The mesh's / cloud's hierarchy is descended with a point query at
+// each node's ball centre (the signed distance is 1-Lipschitz, so a ball farther than its radius plus the margin
 // holds nothing). Internal.
 #pragma once
 

@@ -10,6 +10,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <limits>
 
 namespace unidist::bullet {
 namespace {
@@ -70,6 +72,19 @@ WorldBody makeBody(const SceneBody& sb) {
   return wb;
 }
 
+/// Bullet corrects a contact deeper than m_splitImpulsePenetrationThreshold by a split impulse: a position push
+/// along the normal, outside the velocity solve and so outside friction. The default, an absolute -0.04, is tuned
+/// for bodies about a metre in size; in a millimetre scene every resting contact is deeper than that, and the pushes
+/// along a cradled ball's tilted normals walked Bullet's own boxes off the long-run stack (docs/reliability.md,
+/// "Long runs"). Scaled like ODE's surface layer: -0.02 x the smallest dynamic body's diagonal (-0.035 for a 1 m
+/// cube), so resting contacts get Baumgarte's correction, inside friction, and deep impacts still the split impulse.
+double splitImpulseThreshold(const Scene& scene) {
+  double d = std::numeric_limits<double>::infinity();
+  for (const SceneBody& b : scene.bodies)
+    if (!b.isStatic && b.model && b.model->localBounds().bounded()) d = std::min(d, b.model->localBounds().diagonal());
+  return -0.02 * (std::isfinite(d) ? d : 1.0);
+}
+
 BodyState stateOf(const SceneBody& sb, const WorldBody& wb) {
   BodyState s;
   s.name = sb.name;
@@ -125,6 +140,7 @@ SimResult runScene(const Scene& scene, const SimOptions& options) {
   {
     btDiscreteDynamicsWorld world(&dispatcher, &broadphase, &solver, &config);
     world.setGravity(toBullet(scene.gravity));
+    world.getSolverInfo().m_splitImpulsePenetrationThreshold = btScalar(splitImpulseThreshold(scene));
     for (const SceneBody& sb : scene.bodies) {
       bodies.push_back(makeBody(sb));
       world.addRigidBody(bodies.back().body.get());
