@@ -1,6 +1,7 @@
 // NURBS surfaces and models against analytic truth (rational sphere, torus, cylinder), finite differences, and a
 // dense-sampling + Newton oracle (bicubic wavy patch).
 #include "adapters/error_of.h"
+#include "nurbs/gradient_sign.h"
 #include "nurbs/patch_tree.h"
 #include "nurbs_fixtures.h"
 #include "nurbs_oracle.h"
@@ -175,6 +176,54 @@ TEST(NurbsTree, BallsAndConesAreConservative) {
   checkNodesBySampling(*model(wavySurface(), false), 3);
 }
 
+// The no-minimum certificate (gradient_sign.h) against sampling: wherever it proves a node free of minima for
+// a point q (or a direction d), one gradient component keeps one sign over the whole node (pole edges aside,
+// where it vanishes with the speed), and it proves enough nodes to matter.
+void checkCertificatesBySampling(const NurbsModel& m, int depth, double spread) {
+  std::vector<std::unique_ptr<nurbs::PatchNode>> arena;
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> U(-spread, spread);
+  nurbs::GradientScratch scratch;
+  int proved = 0, asked = 0;
+  std::function<void(const nurbs::PatchNode&)> visit = [&](const nurbs::PatchNode& n) {
+    const RationalBezierPatch& P = m.patches()[static_cast<std::size_t>(n.patch)];
+    for (int k = 0; k < 6; ++k) {
+      const Vec q(U(rng), U(rng), U(rng));
+      const bool point = k % 2 == 0;  // else the support objective along q
+      ++asked;
+      if (!(point ? nurbs::pointHoldsNoMinimum(n, q, scratch, 1e-13) : nurbs::supportHoldsNoMinimum(n, q.normalized(), scratch, 1e-13)))
+        continue;
+      ++proved;
+      int signS = 0, signT = 0;
+      bool constantS = true, constantT = true;
+      for (int i = 0; i <= 12; ++i)
+        for (int j = 0; j <= 12; ++j) {
+          const SurfaceDerivatives d = P.derivatives(n.s0 + (n.s1 - n.s0) * i / 12.0, n.t0 + (n.t1 - n.t0) * j / 12.0);
+          const Vec r = point ? Vec(d.point - q) : Vec(-q.normalized());
+          const auto track = [](double g, double speed, int& sign, bool& constant) {
+            if (speed < 1e-9) return;  // on a pole's edge
+            const int here = g > 0 ? 1 : (g < 0 ? -1 : 0);
+            if (here == 0 || (sign != 0 && here != sign)) constant = false;
+            sign = here;
+          };
+          track(r.dot(d.du), d.du.norm(), signS, constantS);
+          track(r.dot(d.dv), d.dv.norm(), signT, constantT);
+        }
+      ASSERT_TRUE(constantS || constantT) << "patch " << n.patch << " depth " << n.depth << " q " << q.transpose();
+    }
+    if (n.depth < depth)
+      for (const nurbs::PatchNode* c : m.forest().children(n, arena)) visit(*c);
+  };
+  for (const auto& root : m.forest().roots) visit(*root);
+  EXPECT_GT(proved, asked / 4) << proved << " of " << asked;
+}
+
+TEST(NurbsTree, NoMinimumCertificatesHoldBySampling) {
+  checkCertificatesBySampling(*model(sphereSurface(), true), 3, 2.0);
+  checkCertificatesBySampling(*model(torusSurface(), true), 3, 1.6);
+  checkCertificatesBySampling(*model(wavySurface(), false), 3, 1.6);
+}
+
 TEST(NurbsTree, NormalConesNarrowUnderSubdivision) {
   // The test above cannot pass with cones that are always "all directions": require most deep nodes bounded.
   const auto m = model(torusSurface(), true);
@@ -307,13 +356,12 @@ TEST(NurbsClosestPoint, WavyPatchAgainstDenseSamplingOracle) {
   EXPECT_LE(oracleWorse, 20);  // 0.2 %: the grid + Newton oracle, not the model
 }
 
-// Known bug (open, docs/nurbs.md): two of the benchmark's 10,000 points (tests/bench/nurbs_vs_occt.cpp, seed 11)
-// are missed by 3.1e-3 and 4.7e-6. A leaf counted as flat (normal cone under 0.5 rad, radius under half the
-// distance) is closed after one Newton run from its centre; here the run left the leaf for a neighbour's minimum
-// and the leaf held a second basin of its own (one on the patch's edge v = 1, one 0.002 from a knot line).
-// Splitting such leaves fixes both but makes queries near a sphere's centre split down to the tolerance; the fix
-// wanted is a convexity certificate of |S − q|² over a leaf. Run with --gtest_also_run_disabled_tests.
-TEST(NurbsClosestPoint, DISABLED_WavyPatchLeafWithTwoBasins) {
+// Two of the benchmark's 10,000 points (tests/bench/nurbs_vs_occt.cpp, seed 11) were missed by 3.1e-3 and 4.7e-6
+// when a leaf counted as flat was closed after one Newton run from its centre: the run left the leaf for a
+// neighbour's minimum and the leaf held a second basin of its own (one on the patch's edge v = 1, one 0.002 from
+// a knot line). Now a leaf is closed without a run only when the Bernstein form of its gradient proves it holds
+// no minimum (core/src/nurbs/gradient_sign.h), and a leaf its run leaves is split (docs/nurbs.md).
+TEST(NurbsClosestPoint, WavyPatchLeafWithTwoBasins) {
   const NurbsSurface surface = wavySurface();
   const auto m = model(surface, false);
   const nurbs_fixtures::GridOracle oracle(surface);

@@ -2,12 +2,22 @@
 #pragma once
 
 #include "nurbs/bernstein_bound.h"
+#include "nurbs/gradient_sign.h"
 #include "nurbs/patch_search.h"
 
 #include <algorithm>
 #include <limits>
 
 namespace unidist::nurbs {
+
+/// The cheap first try of provesNoMinimum: the tangent cones. Su never orthogonal to the objective's direction
+/// rules out interior critical points and those on the edges t = const, likewise Sv (Su and Sv vanish only on
+/// collapsed edges, whose points are a corner's).
+inline bool conesProveNoMinimum(const PatchNode& n, const Cone& towards) {
+  const bool u = !canBeOrthogonal(n.cu, towards), v = !canBeOrthogonal(n.cv, towards);
+  const bool edgeS = n.s0 == 0 || n.s1 == 1, edgeT = n.t0 == 0 || n.t1 == 1;
+  return (u || v) && (!edgeS || v) && (!edgeT || u);
+}
 
 /// |S − q|; Newton works on ½|S − q|², whose Hessian is the first fundamental form minus ρ times the second.
 class PointObjective final : public Objective {
@@ -32,11 +42,15 @@ class PointObjective final : public Objective {
   // Near the surface the distance is convex over a small piece whatever q, so pieces of a fixed small size
   // are polished too (otherwise a query on the surface would subdivide down to the tolerance).
   double leafScale(const BoundingSphere& b) const override { return std::max((q_ - b.center).norm(), floor_); }
+  bool provesNoMinimum(const PatchNode& n, double negligible) const override {
+    return conesProveNoMinimum(n, criticalDirections(n.ball)) || pointHoldsNoMinimum(n, q_, gradient_, negligible);
+  }
 
  private:
   Eigen::Vector3d q_;
   double floor_;
   mutable BernsteinScratch scratch_;  // one objective per query and thread
+  mutable GradientScratch gradient_;
 };
 
 /// −d·S: its minimiser is a support point in direction d.
@@ -58,10 +72,14 @@ class SupportObjective final : public Objective {
     H << -d_.dot(s.duu), -d_.dot(s.duv), -d_.dot(s.duv), -d_.dot(s.dvv);
   }
   double leafScale(const BoundingSphere&) const override { return size_; }
+  bool provesNoMinimum(const PatchNode& n, double negligible) const override {
+    return conesProveNoMinimum(n, criticalDirections(n.ball)) || supportHoldsNoMinimum(n, d_, gradient_, negligible);
+  }
 
  private:
   Eigen::Vector3d d_;
   double size_;
+  mutable GradientScratch gradient_;
 };
 
 }  // namespace unidist::nurbs

@@ -3,7 +3,8 @@
 // when it can hold an interior critical point (the objective's direction is parallel to its normal cone) or
 // an edge critical point on a patch edge it touches (the direction is orthogonal to the tangent cone along
 // that edge); patch corners are evaluated as nodes appear. Survivors that are small and nearly flat are
-// polished by box-constrained Newton on the whole patch. Internal.
+// closed when their gradient proves they hold no minimum of their own, else polished by box-constrained Newton
+// on the whole patch, and split when the run leaves them. Internal.
 #pragma once
 
 #include "nurbs/patch_tree.h"
@@ -32,6 +33,9 @@ class Objective {
   virtual void derivatives(const SurfaceDerivatives& d, Eigen::Vector2d& gradient, Eigen::Matrix2d& hessian) const = 0;
   /// Size that makes a node "small" (leaf when its radius is below a fraction of it).
   virtual double leafScale(const BoundingSphere& b) const = 0;
+  /// Proved: no point of the node is a local minimum over its patch, patch corners and points within
+  /// `negligible` of a corner aside (gradient_sign.h). Asked of a small flat node before its Newton run.
+  virtual bool provesNoMinimum(const PatchNode& n, double negligible) const = 0;
 };
 
 /// A point of a patch found by the search.
@@ -47,8 +51,10 @@ struct SearchResult {
   int nodes = 0;
   bool exhausted = false;
   /// The objective's minimum is at least this: best.value − tolerance, or when the budget ran out the lowest
-  /// bound still open (a small flat leaf is taken to hold one minimum, which Newton finds: see minimise()).
+  /// bound still open (a small flat leaf a Newton run ends in is taken to hold one minimum: see minimise()).
   double lowerBound = -std::numeric_limits<double>::infinity();
+  /// Pieces closed on a Newton run without a proof that they hold no other minimum (see minimise()).
+  int unproved = 0;
 };
 
 /// Global minimum of the objective over every patch, to `tolerance` (absolute). Patches in `skip` are left out

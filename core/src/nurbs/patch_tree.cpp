@@ -65,6 +65,8 @@ RationalBezierPatch restrict(const RationalBezierPatch& patch, int direction, do
   return out;
 }
 
+}  // namespace
+
 /// Bernstein coefficients (up to positive factors per coefficient) of the numerator X_u W − X W_u of Su:
 /// p Σ B_{i'}^{p-1}(u) B_k^p(u) B_j^q(v) B_l^q(v) [D((i'+1,j),(k,l)) − D((i',j),(k,l))], grouped by degree-
 /// elevated index (i'+k, j+l), where D(a, b) = w_b X_a − w_a X_b = w_a w_b (P_a − P_b) (computed from the
@@ -102,8 +104,6 @@ std::vector<Eigen::Vector3d> derivativeCoefficients(const RationalBezierPatch& p
     }
   return coef;
 }
-
-}  // namespace
 
 Cone coneOfVectors(const std::vector<Eigen::Vector3d>& vectors) {
   // A coefficient that is zero in exact arithmetic (the collapsed edge of a pole) comes out of subdivision as

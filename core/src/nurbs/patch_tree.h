@@ -14,6 +14,8 @@
 
 namespace unidist::nurbs {
 
+struct GradientForm;
+
 /// A cone of directions {axis, half-angle}; `all` means every direction (no bound).
 struct Cone {
   Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();
@@ -35,6 +37,10 @@ bool canBeOrthogonal(const Cone& a, const Cone& b);
 
 /// Proved ball around the Euclidean control points (convex hull property), widened for rounding.
 BoundingSphere ballOfNet(const std::vector<Eigen::Vector4d>& net);
+/// Bernstein coefficients of the numerator X_u W − X W_u of Su divided by the degree p (degree (2p − 1, 2q),
+/// u-major), computed from the Euclidean points so that equal points give exactly zero. With transpose, those
+/// of Sv with u and v swapped (v-major).
+std::vector<Eigen::Vector3d> derivativeCoefficients(const RationalBezierPatch& patch, bool transpose);
 /// Cones of Su and Sv over the whole patch, from the Bernstein coefficients of the rational derivative numerators.
 void tangentCones(const RationalBezierPatch& patch, Cone& cu, Cone& cv);
 /// The subpatch over [s0,s1] x [t0,t1] of the local parameters.
@@ -50,6 +56,8 @@ struct PatchNode {
 
   mutable std::once_flag childrenOnce;
   mutable std::array<std::unique_ptr<PatchNode>, 4> cached;
+  mutable std::once_flag gradientOnce;  // the gradient's Bernstein form, made when first asked (gradient_sign.h)
+  mutable std::shared_ptr<const GradientForm> gradient;
 };
 
 constexpr int kCachedDepth = 7;

@@ -1,0 +1,240 @@
+#include "nurbs/gradient_sign.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace unidist::nurbs {
+namespace {
+
+constexpr double kEps = std::numeric_limits<double>::epsilon();
+// The subdivided net's rounding, as the balls allow for it (patch_tree.cpp, ballOfNet): 256 ulps.
+constexpr double kNetUlps = 256;
+
+/// C(n, k) for n <= 3 kMaxNurbsDegree (built once; rounded to a few ulps beyond 2^53, which only scales a
+/// coefficient by a positive factor that close to 1).
+double choose(int n, int k) {
+  static const std::vector<std::vector<double>> table = [] {
+    std::vector<std::vector<double>> t(3 * kMaxNurbsDegree + 1);
+    for (std::size_t m = 0; m < t.size(); ++m) {
+      t[m].assign(m + 1, 1.0);
+      for (std::size_t j = 1; j < m; ++j) t[m][j] = t[m - 1][j - 1] + t[m - 1][j];
+    }
+    return t;
+  }();
+  return table[static_cast<std::size_t>(n)][static_cast<std::size_t>(k)];
+}
+
+/// Bernstein coefficients of the product of a degree-(n, m) polynomial (coefficients x, u-major) and a
+/// degree-(a, b) one (y), each coefficient pair combined by mul, into `out` (degree (n + a, m + b), u-major).
+template <class T, class X, class Y, class Mul>
+void product(int n, int m, const std::vector<X>& x, int a, int b, const std::vector<Y>& y, Mul mul, const T& zero,
+             std::vector<T>& out) {
+  // The weights C(n,i) C(a,k) / C(n+a,i+k) once per direction (a product runs per new node).
+  double fu[kMaxNurbsDegree + 1][2 * kMaxNurbsDegree + 1], fv[kMaxNurbsDegree + 1][2 * kMaxNurbsDegree + 1];
+  for (int i = 0; i <= n; ++i)
+    for (int k = 0; k <= a; ++k) fu[i][k] = choose(n, i) * choose(a, k) / choose(n + a, i + k);
+  for (int j = 0; j <= m; ++j)
+    for (int l = 0; l <= b; ++l) fv[j][l] = choose(m, j) * choose(b, l) / choose(m + b, j + l);
+  const int cols = m + b + 1;
+  out.assign(static_cast<std::size_t>((n + a + 1) * cols), zero);
+  for (int i = 0; i <= n; ++i)
+    for (int j = 0; j <= m; ++j) {
+      const X& xi = x[static_cast<std::size_t>(i * (m + 1) + j)];
+      for (int k = 0; k <= a; ++k) {
+        T* row = &out[static_cast<std::size_t>((i + k) * cols + j)];
+        const Y* yk = &y[static_cast<std::size_t>(k * (b + 1))];
+        const double f = fu[i][k];
+        for (int l = 0; l <= b; ++l) row[l] += (f * fv[j][l]) * mul(xi, yk[l]);
+      }
+    }
+}
+
+/// +1 or −1 when every value over rows k0..k1 and columns l0..l1 of a grid with `cols` columns is beyond
+/// `margin` with that sign, else 0.
+int signOver(const std::vector<double>& g, int cols, int k0, int k1, int l0, int l1, double margin) {
+  int sign = 0;
+  for (int k = k0; k <= k1; ++k)
+    for (int l = l0; l <= l1; ++l) {
+      const double x = g[static_cast<std::size_t>(k * cols + l)];
+      const int here = x > margin ? 1 : (x < -margin ? -1 : 0);
+      if (here == 0 || (sign != 0 && here != sign)) return 0;
+      sign = here;
+    }
+  return sign;
+}
+
+/// The node's net row (an s edge) or column (a t edge) `line` lies within `negligible` of its first point: a
+/// collapsed patch edge (a pole), every point of which is within that of the corner the search evaluates.
+bool collapsed(const PatchNode& n, bool sEdge, int line, double negligible) {
+  const int count = sEdge ? n.net.degreeV : n.net.degreeU;
+  const Eigen::Vector3d first = sEdge ? n.net.point(line, 0) : n.net.point(0, line);
+  for (int k = 1; k <= count; ++k)
+    if (((sEdge ? n.net.point(line, k) : n.net.point(k, line)) - first).norm() > negligible) return false;
+  return true;
+}
+
+/// The sign of a numerator (grid of degree (a, b), `cols` = b + 1) over the node away from its collapsed edges
+/// (pole[0..3]: s = 0, s = 1, t = 0, t = 1): +1 or −1 when every coefficient off those edges' lines has it
+/// beyond `margin`. A line on a collapsed edge may fall short by κ (there the gradient vanishes with the
+/// edge's speed, up to rounding): with m the least other magnitude, N = Σ c_l(s) B_l(t) >= −κ (1−t)^b +
+/// m (1 − (1−t)^b) > 0 once t > κ / (m + κ), so only a strip that close to the edge is left unproved, which must
+/// lie within `negligible` of it (its speed times the strip's width).
+int signAwayFromPoles(const std::vector<double>& g, int a, int b, const bool pole[4], double margin, double speedS,
+                      double speedT, double negligible) {
+  const int cols = b + 1;
+  const auto onLine = [&](int k, int l) {
+    return (pole[0] && k == 0) || (pole[1] && k == a) || (pole[2] && l == 0) || (pole[3] && l == b);
+  };
+  int sign = 0;
+  double least = std::numeric_limits<double>::infinity();
+  for (int k = 0; k <= a; ++k)
+    for (int l = 0; l <= b; ++l) {
+      if (onLine(k, l)) continue;
+      const double x = g[static_cast<std::size_t>(k * cols + l)];
+      const int here = x > margin ? 1 : (x < -margin ? -1 : 0);
+      if (here == 0 || (sign != 0 && here != sign)) return 0;
+      sign = here;
+      least = std::min(least, std::abs(x) - margin);
+    }
+  if (sign == 0) return 0;
+  int short_ = -1;  // the one line allowed to fall short
+  double kappa = 0;
+  for (int k = 0; k <= a; ++k)
+    for (int l = 0; l <= b; ++l) {
+      if (!onLine(k, l)) continue;
+      const double deficit = margin - sign * g[static_cast<std::size_t>(k * cols + l)];
+      if (deficit <= 0) continue;
+      const int line = (pole[0] && k == 0) ? 0 : (pole[1] && k == a) ? 1 : (pole[2] && l == 0) ? 2 : 3;
+      if (short_ >= 0 && short_ != line) return 0;
+      short_ = line;
+      kappa = std::max(kappa, deficit);
+    }
+  if (short_ < 0) return sign;
+  const double strip = kappa / (least + kappa) * (short_ < 2 ? speedS : speedT);
+  return strip <= negligible ? sign : 0;
+}
+
+/// The numerators' coefficients u (∂/∂s) and v (∂/∂t), each known to within `margin`, prove the node free of
+/// local minima over its patch: none inside (one component never zero), none on a patch edge it touches (the
+/// component along the edge never zero, or the other pointing out of the patch), collapsed edges aside (a
+/// pole: every point there is within `negligible` of the corner the search evaluates). Without the strip rule
+/// every piece at a pole would fail (S_s vanishes along it) and be split down to the tolerance.
+bool noMinimum(const GradientForm& F, const std::vector<double>& u, const std::vector<double>& v, const PatchNode& n,
+               double margin, double negligible) {
+  const bool s0 = n.s0 == 0, s1 = n.s1 == 1, t0 = n.t0 == 0, t1 = n.t1 == 1;
+  const bool pole[4] = {s0 && collapsed(n, true, 0, negligible), s1 && collapsed(n, true, n.net.degreeU, negligible),
+                        t0 && collapsed(n, false, 0, negligible), t1 && collapsed(n, false, n.net.degreeV, negligible)};
+  if (signAwayFromPoles(u, F.su, F.tu, pole, margin, F.speedS, F.speedT, negligible) == 0 &&
+      signAwayFromPoles(v, F.sv, F.tv, pole, margin, F.speedS, F.speedT, negligible) == 0)
+    return false;
+  const int cu = F.tu + 1, cv = F.tv + 1;
+  // Edge s = 0: a minimum there has ∂/∂t = 0 and ∂/∂s >= 0; edge s = 1: ∂/∂s <= 0. Likewise for t.
+  if (s0 && !pole[0] && signOver(v, cv, 0, 0, 0, F.tv, margin) == 0 && signOver(u, cu, 0, 0, 0, F.tu, margin) >= 0)
+    return false;
+  if (s1 && !pole[1] && signOver(v, cv, F.sv, F.sv, 0, F.tv, margin) == 0 &&
+      signOver(u, cu, F.su, F.su, 0, F.tu, margin) <= 0)
+    return false;
+  if (t0 && !pole[2] && signOver(u, cu, 0, F.su, 0, 0, margin) == 0 && signOver(v, cv, 0, F.sv, 0, 0, margin) >= 0)
+    return false;
+  if (t1 && !pole[3] && signOver(u, cu, 0, F.su, F.tu, F.tu, margin) == 0 &&
+      signOver(v, cv, 0, F.sv, F.tv, F.tv, margin) <= 0)
+    return false;
+  return true;
+}
+
+std::shared_ptr<const GradientForm> makeForm(const PatchNode& n) {
+  auto F = std::make_shared<GradientForm>();
+  const RationalBezierPatch& net = n.net;
+  const int p = net.degreeU, q = net.degreeV;
+  F->centre = n.ball.center;
+  double scale = 0, wmax = 0, reach = 0;  // largest coordinate, weight, and distance from the centre
+  for (const Eigen::Vector4d& h : net.net) {
+    const Eigen::Vector3d P = h.head<3>() / h[3];
+    scale = std::max(scale, P.cwiseAbs().maxCoeff());
+    wmax = std::max(wmax, h[3]);
+    reach = std::max(reach, (P - F->centre).norm());
+  }
+  std::vector<Eigen::Vector3d> du = derivativeCoefficients(net, false), dvT = derivativeCoefficients(net, true);
+  // Sv's coefficients come v-major (degree (2q − 1, 2p)): transposed to u-major (2p, 2q − 1).
+  std::vector<Eigen::Vector3d> dv(dvT.size());
+  for (int j = 0; j < 2 * q; ++j)
+    for (int i = 0; i <= 2 * p; ++i)
+      dv[static_cast<std::size_t>(i * (2 * q) + j)] = dvT[static_cast<std::size_t>(j * (2 * p + 1) + i)];
+  double dmax = 0, dumax = 0, dvmax = 0, wmin = std::numeric_limits<double>::infinity();
+  for (const auto& d : du) dumax = std::max(dumax, d.norm());
+  for (const auto& d : dv) dvmax = std::max(dvmax, d.norm());
+  for (const Eigen::Vector4d& h : net.net) wmin = std::min(wmin, h[3]);
+  dmax = std::max(dumax, dvmax);
+  // |S_s| = p |D_s| / W² (the coefficients are the numerator's over p), bounded by the coefficients' hull.
+  F->speedS = p * dumax / (wmin * wmin) * (1 + 1e-12);
+  F->speedT = q * dvmax / (wmin * wmin) * (1 + 1e-12);
+  std::vector<Eigen::Vector3d> X(net.net.size());  // X' = X − c W
+  std::vector<double> W(net.net.size());
+  for (std::size_t k = 0; k < net.net.size(); ++k) {
+    X[k] = net.net[k].head<3>() - F->centre * net.net[k][3];
+    W[k] = net.net[k][3];
+  }
+  const auto dot = [](const Eigen::Vector3d& x, const Eigen::Vector3d& d) { return x.dot(d); };
+  const auto scaled = [](double w, const Eigen::Vector3d& d) -> Eigen::Vector3d { return w * d; };
+  const Eigen::Vector3d zero = Eigen::Vector3d::Zero();
+  product(p, q, X, 2 * p - 1, 2 * q, du, dot, 0.0, F->pu);
+  product(p, q, W, 2 * p - 1, 2 * q, du, scaled, zero, F->qu);
+  product(p, q, X, 2 * p, 2 * q - 1, dv, dot, 0.0, F->pv);
+  product(p, q, W, 2 * p, 2 * q - 1, dv, scaled, zero, F->qv);
+  F->su = 3 * p - 1;
+  F->tu = 3 * q;
+  F->sv = 3 * p;
+  F->tv = 3 * q - 1;
+  // Bernstein product weights sum to 1 per coefficient, so sizes multiply. The net's points may be off by
+  // 256 ulps of the coordinates and its weights by 256 ulps: D (sums of w w (P − P)) by deltaD, X' by deltaX.
+  const double deltaX = 2 * kNetUlps * kEps * (scale + F->centre.cwiseAbs().maxCoeff()) * std::sqrt(3.0) * wmax;
+  // D's own sums (p (q + 1)² terms each) round within the same kind of allowance.
+  const double ulpsD = kNetUlps + 4.0 * p * (q + 1) * (std::max(p, q) + 1);
+  const double deltaD = 4 * ulpsD * kEps * scale * std::sqrt(3.0) * wmax * wmax + 3 * kNetUlps * kEps * dmax;
+  const double rounding = (16.0 * (p + 1) * (q + 1) + 64) * kEps;  // the sums here, relative to the sizes
+  F->sizeP = wmax * reach * dmax + deltaX * dmax;
+  F->sizeQ = wmax * dmax;
+  F->errP = wmax * reach * deltaD + deltaX * (dmax + deltaD) + rounding * F->sizeP;
+  F->errQ = wmax * deltaD + kNetUlps * kEps * F->sizeQ + rounding * F->sizeQ;
+  return F;
+}
+
+}  // namespace
+
+const Eigen::Vector3d* collapsedCorner(const PatchNode& n, double negligible) {
+  if (n.s0 == 0 && collapsed(n, true, 0, negligible)) return &n.corners[0];
+  if (n.s1 == 1 && collapsed(n, true, n.net.degreeU, negligible)) return &n.corners[1];
+  if (n.t0 == 0 && collapsed(n, false, 0, negligible)) return &n.corners[0];
+  if (n.t1 == 1 && collapsed(n, false, n.net.degreeV, negligible)) return &n.corners[2];
+  return nullptr;
+}
+
+const GradientForm& gradientForm(const PatchNode& n) {
+  std::call_once(n.gradientOnce, [&n] { n.gradient = makeForm(n); });
+  return *n.gradient;
+}
+
+bool pointHoldsNoMinimum(const PatchNode& n, const Eigen::Vector3d& q, GradientScratch& g, double negligible) {
+  const GradientForm& F = gradientForm(n);
+  const Eigen::Vector3d r = q - F.centre;
+  g.u.resize(F.pu.size());
+  g.v.resize(F.pv.size());
+  for (std::size_t k = 0; k < F.pu.size(); ++k) g.u[k] = F.pu[k] - r.dot(F.qu[k]);
+  for (std::size_t k = 0; k < F.pv.size(); ++k) g.v[k] = F.pv[k] - r.dot(F.qv[k]);
+  // r itself is rounded by an ulp of the larger of q and the centre.
+  const double slack = 2 * kEps * (q.cwiseAbs().maxCoeff() + F.centre.cwiseAbs().maxCoeff()) * std::sqrt(3.0);
+  const double margin = F.errP + r.norm() * F.errQ + slack * F.sizeQ + 8 * kEps * (F.sizeP + r.norm() * F.sizeQ);
+  return noMinimum(F, g.u, g.v, n, margin, negligible);
+}
+
+bool supportHoldsNoMinimum(const PatchNode& n, const Eigen::Vector3d& d, GradientScratch& g, double negligible) {
+  const GradientForm& F = gradientForm(n);
+  g.u.resize(F.qu.size());
+  g.v.resize(F.qv.size());
+  for (std::size_t k = 0; k < F.qu.size(); ++k) g.u[k] = -d.dot(F.qu[k]);
+  for (std::size_t k = 0; k < F.qv.size(); ++k) g.v[k] = -d.dot(F.qv[k]);
+  return noMinimum(F, g.u, g.v, n, F.errQ + 8 * kEps * F.sizeQ, negligible);
+}
+
+}  // namespace unidist::nurbs
