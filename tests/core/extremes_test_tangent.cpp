@@ -100,14 +100,19 @@ TEST(Tangent, NurbsBallInsideNurbsSolid) {
 
 // A NURBS–NURBS overlap whose way out leaves a NURBS sphere touching the other solid at its pole (the collapsed
 // patch edge): the separation tests of the depth search near that contact cost 0.6-2.3 s each, and the query
-// 45 s, until deep subpatches got the Bernstein lower bound (above): 4 s.
+// 45 s, until deep subpatches got the Bernstein lower bound (above): 4 s. Leaves at a pole are never proved free
+// of a minimum by the point search's certificate (core/src/nurbs/gradient_sign.h) and are split further: 2.4 ->
+// 3.5 s alone, 5.2 s of CPU once in the parallel suite, so this case gets a budget of 10 s (still a tenth of the
+// 45 s it once took).
 TEST(Tangent, NurbsOverlapLeavingThroughThePole) {
   std::mt19937_64 rng(46);
   const Body a = box(Family::Nurbs, Vec(0.5, 0.4, 0.3)), b = ball(Family::Nurbs, 0.5);
   const Pose XA = randomRotation(rng);
   Pose XB = XA;  // the sphere's pole axis along the box's z: it leaves through the +z face, touching at the pole
   XB.translation() = XA * Vec(0.1, -0.1, 0.3);
-  runCase(makeCase("deep", a, XA, b, XB, exactly(-0.5)));
+  Case c = makeCase("deep", a, XA, b, XB, exactly(-0.5));
+  c.budgetSeconds = 10;
+  runCase(c);
 }
 
 }  // namespace
