@@ -90,8 +90,7 @@ void buildTimes(const std::string& label, const TriangleMesh& m) {
   // (medianMicros) stays out of the small meshes' times.
   const auto t = bench::Clock::now();
   (void)fresh()->bvh();
-  const double first = std::chrono::duration<double, std::micro>(bench::Clock::now() - t).count();
-  const int batch = std::clamp(static_cast<int>(200.0 / std::max(first, 1e-3)), 1, 200);
+  const int batch = bench::batchFor(std::chrono::duration<double, std::micro>(bench::Clock::now() - t).count(), 200);
   std::vector<double> bvh, all;
   for (int i = 0; i < 21; ++i) {  // as many samples as FCL's builds get below
     std::vector<std::unique_ptr<TriangleMesh>> meshes;

@@ -62,6 +62,11 @@ inline double fclDistance(const fcl::CollisionGeometryd* a, const Eigen::Isometr
   return result.min_distance;
 }
 
+/// Calls per timed sample for a call that took `firstMicros`: enough for ~200 µs (see medianMicros), at most `most`.
+inline int batchFor(double firstMicros, int most) {
+  return std::clamp(static_cast<int>(200.0 / std::max(firstMicros, 1e-3)), 1, most);
+}
+
 /// Median of one call's CPU time in µs. Reading the thread's CPU clock costs ~1.6 µs here (a system call, where
 /// the wall clock costs 0.03), so calls are timed in batches of at least ~200 µs and each sample is a batch's
 /// time over its calls; the samples adapt to the call's cost (5 to maxReps, ~0.5 s).
@@ -70,7 +75,7 @@ double medianMicros(int maxReps, F&& f) {
   const auto t0 = Clock::now();
   f();
   const double first = std::max(std::chrono::duration<double, std::micro>(Clock::now() - t0).count(), 1e-3);
-  const int batch = std::clamp(static_cast<int>(200.0 / first), 1, 1000);
+  const int batch = batchFor(first, 1000);
   const int reps = std::clamp(static_cast<int>(5e5 / (first * batch)), 5, maxReps);
   std::vector<double> times;
   for (int i = 0; i < reps; ++i) {

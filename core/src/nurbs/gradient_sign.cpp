@@ -1,4 +1,5 @@
 #include "nurbs/gradient_sign.h"
+#include "nurbs/binomial.h"
 
 #include <algorithm>
 #include <cmath>
@@ -11,20 +12,6 @@ constexpr double kEps = std::numeric_limits<double>::epsilon();
 // The subdivided net's rounding, as the balls allow for it (patch_tree.cpp, ballOfNet): 256 ulps.
 constexpr double kNetUlps = 256;
 
-/// C(n, k) for n <= 3 kMaxNurbsDegree (built once; rounded to a few ulps beyond 2^53, which only scales a
-/// coefficient by a positive factor that close to 1).
-double choose(int n, int k) {
-  static const std::vector<std::vector<double>> table = [] {
-    std::vector<std::vector<double>> t(3 * kMaxNurbsDegree + 1);
-    for (std::size_t m = 0; m < t.size(); ++m) {
-      t[m].assign(m + 1, 1.0);
-      for (std::size_t j = 1; j < m; ++j) t[m][j] = t[m - 1][j - 1] + t[m - 1][j];
-    }
-    return t;
-  }();
-  return table[static_cast<std::size_t>(n)][static_cast<std::size_t>(k)];
-}
-
 /// Bernstein coefficients of the product of a degree-(n, m) polynomial (coefficients x, u-major) and a
 /// degree-(a, b) one (y), each coefficient pair combined by mul, into `out` (degree (n + a, m + b), u-major).
 template <class T, class X, class Y, class Mul>
@@ -33,9 +20,9 @@ void product(int n, int m, const std::vector<X>& x, int a, int b, const std::vec
   // The weights C(n,i) C(a,k) / C(n+a,i+k) once per direction (a product runs per new node).
   double fu[kMaxNurbsDegree + 1][2 * kMaxNurbsDegree + 1], fv[kMaxNurbsDegree + 1][2 * kMaxNurbsDegree + 1];
   for (int i = 0; i <= n; ++i)
-    for (int k = 0; k <= a; ++k) fu[i][k] = choose(n, i) * choose(a, k) / choose(n + a, i + k);
+    for (int k = 0; k <= a; ++k) fu[i][k] = binomial(n, i) * binomial(a, k) / binomial(n + a, i + k);
   for (int j = 0; j <= m; ++j)
-    for (int l = 0; l <= b; ++l) fv[j][l] = choose(m, j) * choose(b, l) / choose(m + b, j + l);
+    for (int l = 0; l <= b; ++l) fv[j][l] = binomial(m, j) * binomial(b, l) / binomial(m + b, j + l);
   const int cols = m + b + 1;
   out.assign(static_cast<std::size_t>((n + a + 1) * cols), zero);
   for (int i = 0; i <= n; ++i)
@@ -148,11 +135,13 @@ std::shared_ptr<const GradientForm> makeForm(const PatchNode& n) {
   const RationalBezierPatch& net = n.net;
   const int p = net.degreeU, q = net.degreeV;
   F->centre = n.ball.center;
-  double scale = 0, wmax = 0, reach = 0;  // largest coordinate, weight, and distance from the centre
+  // Largest coordinate, largest and smallest weight, and largest distance from the centre.
+  double scale = 0, wmax = 0, wmin = std::numeric_limits<double>::infinity(), reach = 0;
   for (const Eigen::Vector4d& h : net.net) {
     const Eigen::Vector3d P = h.head<3>() / h[3];
     scale = std::max(scale, P.cwiseAbs().maxCoeff());
     wmax = std::max(wmax, h[3]);
+    wmin = std::min(wmin, h[3]);
     reach = std::max(reach, (P - F->centre).norm());
   }
   std::vector<Eigen::Vector3d> du = derivativeCoefficients(net, false), dvT = derivativeCoefficients(net, true);
@@ -161,11 +150,10 @@ std::shared_ptr<const GradientForm> makeForm(const PatchNode& n) {
   for (int j = 0; j < 2 * q; ++j)
     for (int i = 0; i <= 2 * p; ++i)
       dv[static_cast<std::size_t>(i * (2 * q) + j)] = dvT[static_cast<std::size_t>(j * (2 * p + 1) + i)];
-  double dmax = 0, dumax = 0, dvmax = 0, wmin = std::numeric_limits<double>::infinity();
+  double dumax = 0, dvmax = 0;
   for (const auto& d : du) dumax = std::max(dumax, d.norm());
   for (const auto& d : dv) dvmax = std::max(dvmax, d.norm());
-  for (const Eigen::Vector4d& h : net.net) wmin = std::min(wmin, h[3]);
-  dmax = std::max(dumax, dvmax);
+  const double dmax = std::max(dumax, dvmax);
   // |S_s| = p |D_s| / W² (the coefficients are the numerator's over p), bounded by the coefficients' hull.
   F->speedS = p * dumax / (wmin * wmin) * (1 + 1e-12);
   F->speedT = q * dvmax / (wmin * wmin) * (1 + 1e-12);

@@ -1,4 +1,5 @@
 #include "nurbs/patch_tree.h"
+#include "nurbs/binomial.h"
 #include "nurbs/reparametrise.h"
 
 #include <algorithm>
@@ -15,19 +16,6 @@ constexpr double kAngleSlack = 1e-9;
 double angleBetween(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
   // atan2 of |a x b| and a·b stays accurate near 0 and π, unlike acos.
   return std::atan2(a.cross(b).norm(), a.dot(b));
-}
-
-/// Binomial coefficients C(n, k) for n <= 2 kMaxNurbsDegree (built once).
-double binomial(int n, int k) {
-  static const std::vector<std::vector<double>> table = [] {
-    std::vector<std::vector<double>> t(2 * kMaxNurbsDegree + 1);
-    for (std::size_t m = 0; m < t.size(); ++m) {
-      t[m].assign(m + 1, 1.0);
-      for (std::size_t j = 1; j < m; ++j) t[m][j] = t[m - 1][j - 1] + t[m - 1][j];
-    }
-    return t;
-  }();
-  return table[static_cast<std::size_t>(n)][static_cast<std::size_t>(k)];
 }
 
 /// De Casteljau at a on points[0..n]: left gets the part over [0,a], right the part over [a,1].

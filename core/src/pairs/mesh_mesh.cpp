@@ -40,9 +40,9 @@ struct Traversal {
 };
 
 /// B's node volumes turned into A's frame, each once, for a search that meets the same B nodes again and again
-/// (linked torus_1k–torus_20k: ~22,000 RSS bounds meet ~350 of the 1k torus's nodes). The array is made only once the search
-/// has met as many node pairs as a quarter of B's nodes, so a short search never pays for it; until then each
-/// volume is turned where it is needed.
+/// (linked torus_1k–torus_20k: ~22,000 RSS bounds meet ~350 of the 1k torus's nodes). The cache is made only
+/// once the search has met as many node pairs as a quarter of B's nodes, so a short search never pays for it;
+/// until then each volume is turned where it is needed.
 class PosedVolumes {
  public:
   struct Box {
@@ -76,9 +76,8 @@ class PosedVolumes {
   static constexpr std::uint32_t kNone = ~0u;
   Box turnBox(std::uint32_t j) const {
     const mesh::BvhNode& y = nodes_[j];
-    const Eigen::Vector3d yc(0.5 * (y.lo[0] + y.hi[0]), 0.5 * (y.lo[1] + y.hi[1]), 0.5 * (y.lo[2] + y.hi[2]));
     const Eigen::Vector3d yh(0.5 * (y.hi[0] - y.lo[0]), 0.5 * (y.hi[1] - y.lo[1]), 0.5 * (y.hi[2] - y.lo[2]));
-    return {R_ * yc + t_, absR_ * yh};
+    return {R_ * y.center() + t_, absR_ * yh};
   }
   // Per node, where its turned volumes are (kNone: not yet): only the volumes met are ever written, so making
   // the cache costs two index arrays, not an array of volumes (env/rob: 40–176 node pairs in all).
@@ -144,9 +143,7 @@ Traversal traverse(const Side& A, const Side& B, const Eigen::Isometry3d& X_AB, 
   };
   // The RSS bound on top of the cheap ones (below `cutoff` only: above it the pair is pruned anyway).
   auto tighten = [&](Entry& e, double cutoff) {
-    if (!e.tight && e.lb < cutoff) {
-      e.lb = std::max(e.lb, posedB.rssLowerBound(ra[e.a], e.b, out.nodePairs, cutoff));
-    }
+    if (!e.tight && e.lb < cutoff) e.lb = std::max(e.lb, posedB.rssLowerBound(ra[e.a], e.b, out.nodePairs, cutoff));
     e.tight = true;
   };
   double minPruned = std::numeric_limits<double>::infinity();
@@ -527,7 +524,9 @@ DistanceResult meshMesh(const PosedModel& a, const PosedModel& b, const QueryCon
   const Eigen::Isometry3d& X_FP = swapped ? X_BA : X_AB;
   const mesh::MeshBvh& hf = mf.bvh();
   const mesh::MeshBvh& hp = mp.bvh();
-  const double scale = std::max(coordinateScale(ma, mb, X_AB), coordinateScale(mf, mp, X_FP));
+  // Rounding slack for the coordinates of both frames: the search's (F's) and the answer's (A's).
+  const double scale = swapped ? std::max(coordinateScale(ma, mb, X_AB), coordinateScale(mf, mp, X_FP))
+                               : coordinateScale(ma, mb, X_AB);
 
   Best best;  // in F's frame until the end
   TrianglePairs leaf(mf, mp, hf, hp, X_FP);
