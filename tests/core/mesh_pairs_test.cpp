@@ -16,6 +16,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <memory>
 #include <random>
 #include <string>
@@ -359,7 +360,7 @@ TEST(MeshVolumes, EveryTriangleIsInsideItsNodesRss) {
     const TriangleMesh m(fam.shape.soup.vertices, fam.shape.soup.triangles);
     const unidist::mesh::MeshBvh& h = m.bvh();
     EXPECT_FALSE(h.rssFitted());
-    const std::vector<unidist::mesh::Rss>& rss = h.rss(m.vertices(), m.triangles());
+    const auto& rss = h.rss(m.vertices(), m.triangles());
     ASSERT_TRUE(h.rssFitted());
     ASSERT_EQ(rss.size(), h.tree.nodes.size());
     LD worst = -1;
@@ -371,6 +372,39 @@ TEST(MeshVolumes, EveryTriangleIsInsideItsNodesRss) {
     }
     EXPECT_LE(worst, 0.0L) << fam.name;
   }
+}
+
+TEST(MeshVolumes, LargeHierarchiesOnHugePageBoundariesHoldTheirTriangles) {
+  // ~45k triangles: the nodes, ranges and RSS arrays pass BigArrayAllocator's threshold (mesh/big_array.h),
+  // so this is the path large meshes take; the volumes must be as sound as on the ordinary path.
+  const Soup t = meshfix::torus(1.0, 0.3, 212, 106);
+  const TriangleMesh m(t.vertices, t.triangles);
+  const unidist::mesh::MeshBvh& h = m.bvh();
+  const auto& rss = h.rss(m.vertices(), m.triangles());
+  using unidist::mesh::BigArrayAllocator;
+  ASSERT_TRUE(BigArrayAllocator<unidist::mesh::Rss>::big(rss.size()));
+  ASSERT_TRUE(BigArrayAllocator<unidist::mesh::BvhNode>::big(h.tree.nodes.size()));
+  for (const void* p : {static_cast<const void*>(rss.data()), static_cast<const void*>(h.tree.nodes.data())})
+    EXPECT_EQ(reinterpret_cast<std::uintptr_t>(p) % unidist::mesh::kHugePageBytes, 0u);
+  LD worst = -1;
+  for (std::size_t n = 0; n < rss.size(); ++n)
+    for (std::uint32_t s = h.ranges[n][0]; s < h.ranges[n][1]; ++s)
+      for (std::uint32_t v : m.triangles()[h.tree.order[s]]) worst = std::max(worst, outsideRss(rss[n], m.vertices()[v]));
+  EXPECT_LE(worst, 0.0L);
+}
+
+TEST(MeshVolumes, BigVectorKeepsItsElementsAcrossTheThreshold) {
+  // Growing from ordinary memory past the threshold moves the elements into a huge-page-aligned buffer;
+  // shrinking back below it returns to the ordinary allocator.
+  unidist::mesh::BigVector<std::uint64_t> v;
+  const std::size_t big = unidist::mesh::kBigArrayBytes / sizeof(std::uint64_t) + 1;
+  for (std::uint64_t i = 0; i < big; ++i) v.push_back(i * 2654435761u);
+  EXPECT_EQ(reinterpret_cast<std::uintptr_t>(v.data()) % unidist::mesh::kHugePageBytes, 0u);
+  for (std::uint64_t i = 0; i < big; ++i) ASSERT_EQ(v[i], i * 2654435761u);
+  v.resize(10);
+  v.shrink_to_fit();
+  ASSERT_EQ(v.size(), 10u);
+  for (std::uint64_t i = 0; i < 10; ++i) EXPECT_EQ(v[i], i * 2654435761u);
 }
 
 TEST(MeshVolumes, FitHoldsDegeneratePointSets) {

@@ -10,8 +10,8 @@ namespace unidist::cloud {
 
 struct PointTree {
   mesh::Bvh tree;
-  std::vector<BoundingSphere> spheres;  ///< per node: centred at the box centre, holding every point below
-  std::vector<std::array<std::uint32_t, 2>> ranges;  ///< per node: slots [begin, end)
+  mesh::BigVector<BoundingSphere> spheres;  ///< per node: centred at the box centre, holding every point below
+  mesh::BigVector<std::array<std::uint32_t, 2>> ranges;  ///< per node: slots [begin, end)
   std::size_t memoryBytes() const;
 };
 

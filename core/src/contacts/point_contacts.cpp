@@ -50,7 +50,7 @@ Contact makeContact(const Eigen::Vector3d& p_M, const SurfacePoint& sp, const Ei
 
 /// Depth-first descent of a hierarchy, skipping nodes whose ball is beyond `limit` from the other model.
 template <class LeafFn>
-void descend(const mesh::Bvh& tree, const std::vector<BoundingSphere>& spheres, const Field& field, double limit,
+void descend(const mesh::Bvh& tree, const mesh::BigVector<BoundingSphere>& spheres, const Field& field, double limit,
              LeafFn&& leaf) {
   std::vector<std::uint32_t> stack{0};
   while (!stack.empty()) {

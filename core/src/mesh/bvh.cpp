@@ -45,8 +45,8 @@ struct WorkItem {
 };
 
 struct Work {
-  std::vector<WorkItem> items;
-  std::vector<std::uint32_t> ids;
+  BigVector<WorkItem> items;
+  BigVector<std::uint32_t> ids;
   void swap(std::uint32_t i, std::uint32_t j) {
     std::swap(items[i], items[j]);
     std::swap(ids[i], ids[j]);
@@ -176,7 +176,7 @@ Bvh buildBvhOf(std::uint32_t n, const BoxOf& boxOf, int maxLeafSize) {
   struct Shape {
     std::uint32_t first = 0, count = 0;
   };
-  std::vector<Shape> shape;
+  BigVector<Shape> shape;
   shape.reserve(n > 0 ? 2 * static_cast<std::size_t>(n) - 1 : 1);
   shape.push_back(Shape{});
   std::vector<Task> tasks;
@@ -232,7 +232,7 @@ Bvh buildBvhOf(std::uint32_t n, const BoxOf& boxOf, int maxLeafSize) {
     bvh.nodes[i].first = shape[i].first;
     bvh.nodes[i].count = shape[i].count;
   }
-  std::vector<Shape>().swap(shape);
+  BigVector<Shape>().swap(shape);
   bvh.order = std::move(w.ids);
   // Exact boxes, bottom-up (children are stored after their parents): leaves from their items' double boxes.
   for (std::size_t i = bvh.nodes.size(); i-- > 0;) {
@@ -270,8 +270,8 @@ Bvh buildBvh(const std::vector<BvhItem>& items, int maxLeafSize) {
   return buildBvhOf(static_cast<std::uint32_t>(items.size()), [&items](std::uint32_t i) { return items[i]; }, maxLeafSize);
 }
 
-std::vector<std::array<std::uint32_t, 2>> nodeRanges(const Bvh& bvh) {
-  std::vector<std::array<std::uint32_t, 2>> ranges(bvh.nodes.size());
+BigVector<std::array<std::uint32_t, 2>> nodeRanges(const Bvh& bvh) {
+  BigVector<std::array<std::uint32_t, 2>> ranges(bvh.nodes.size());
   // Children are stored after their parent, so a reverse sweep sees them first.
   for (std::size_t i = bvh.nodes.size(); i-- > 0;) {
     const BvhNode& n = bvh.nodes[i];
@@ -289,7 +289,7 @@ std::size_t MeshBvh::memoryBytes() const {
          rssBytes;
 }
 
-const std::vector<Rss>& MeshBvh::rss(const std::vector<Eigen::Vector3d>& vertices,
+const BigVector<Rss>& MeshBvh::rss(const std::vector<Eigen::Vector3d>& vertices,
                                      const std::vector<TriangleMesh::Triangle>& triangles) const {
   std::call_once(lazyRss->once, [&] {
     lazyRss->volumes = fitNodeRss(*this, vertices, triangles);
@@ -307,7 +307,7 @@ namespace {
 /// so it stays a few kilobytes (cache-resident) instead of a copy of the mesh.
 /// visit(node, points, count): points is null above pointsBelow.
 template <class Visit>
-void postOrderWithPoints(const Bvh& tree, const std::vector<std::array<std::uint32_t, 2>>& ranges,
+void postOrderWithPoints(const Bvh& tree, const BigVector<std::array<std::uint32_t, 2>>& ranges,
                          const std::vector<Eigen::Vector3d>& vertices,
                          const std::vector<TriangleMesh::Triangle>& triangles, std::uint32_t pointsBelow,
                          Visit&& visit) {
@@ -320,7 +320,9 @@ void postOrderWithPoints(const Bvh& tree, const std::vector<std::array<std::uint
   Frame stack[kMaxBvhDepth + 4];
   int top = 0;
   std::vector<Eigen::Vector3d> points;
-  points.reserve(8 * static_cast<std::size_t>(pointsBelow) + 64);
+  // Room for a large node's two small children (three corners a triangle; never more than the mesh has);
+  // it grows when large nodes further up still hold completed small children.
+  points.reserve(std::min<std::size_t>(6 * static_cast<std::size_t>(pointsBelow), 3 * triangles.size()) + 16);
   stack[top++] = {0, 0, false};
   while (top > 0) {
     Frame& f = stack[top - 1];
@@ -388,7 +390,7 @@ struct Moments {
 
 }  // namespace
 
-std::vector<Rss> fitNodeRss(const MeshBvh& bvh, const std::vector<Eigen::Vector3d>& vertices,
+BigVector<Rss> fitNodeRss(const MeshBvh& bvh, const std::vector<Eigen::Vector3d>& vertices,
                             const std::vector<TriangleMesh::Triangle>& triangles) {
   // Axes: principal axes of the node's vertices (each once per leaf), from moments summed bottom-up about the
   // root's centre, by Jacobi rotations started from the larger child's axes (a leaf: from its first
@@ -396,7 +398,7 @@ std::vector<Rss> fitNodeRss(const MeshBvh& bvh, const std::vector<Eigen::Vector3
   // O(1) each. Measured on the linked tori: scanning up to kRssScanBelow triangles visits ~0.4 % more node
   // pairs than scanning every node (up to 64: 2 %, 32: 6 %), and keeps the fit O(n log kRssScanBelow).
   const std::size_t nodes = bvh.tree.nodes.size();
-  std::vector<Rss> out(nodes);
+  BigVector<Rss> out(nodes);
   if (nodes == 0) return out;
   const Eigen::Vector3d origin = bvh.tree.nodes[0].center();
   // The walk is children first, so a node's children's moments are the top two of this stack.
@@ -438,32 +440,29 @@ MeshBvh buildMeshBvh(const std::vector<Eigen::Vector3d>& vertices,
   m.ranges = nodeRanges(m.tree);
   m.spheres.resize(m.tree.nodes.size());
 
-  // Small nodes (the many near the leaves) get their ball from a scan of their own vertices; larger nodes
-  // merge their children's balls (looser, but O(1) each, so the whole pass is O(n)).
-  constexpr std::uint32_t kScanBelow = 32;
-  postOrderWithPoints(m.tree, m.ranges, vertices, triangles, kScanBelow,
-                      [&](std::uint32_t i, const Eigen::Vector3d* p, std::size_t n) {
-                        const BvhNode& node = m.tree.nodes[i];
-                        const Eigen::Vector3d c = node.center();
-                        // Ball: the largest distance from the box centre to a vertex of the node's triangles,
-                        // or for a large node the children's balls seen from this centre, and never more than
-                        // the box's half diagonal.
-                        double reach = 0;
-                        if (p) {
-                          double farthest = 0;
-                          for (std::size_t k = 0; k < n; ++k) farthest = std::max(farthest, (p[k] - c).squaredNorm());
-                          reach = std::sqrt(farthest);
-                        } else {
-                          for (std::uint32_t child : {node.first, node.first + 1})
-                            reach = std::max(reach, (m.spheres[child].center - c).norm() + m.spheres[child].radius);
-                          const Eigen::Vector3d half(0.5 * (node.hi[0] - node.lo[0]), 0.5 * (node.hi[1] - node.lo[1]),
-                                                     0.5 * (node.hi[2] - node.lo[2]));
-                          // The stored centre is the true box centre up to its rounding (ε of its
-                          // coordinates), hence the pad.
-                          reach = std::min(reach, half.norm() + 4.0 * kEps * c.cwiseAbs().sum());
-                        }
-                        m.spheres[i] = {c, paddedRadius(reach)};
-                      });
+  // Balls, bottom-up (children are stored after their parents): a leaf's from the corners of its triangles,
+  // an internal node's from its children's balls seen from its centre, never more than its box's half
+  // diagonal. Scanning the vertices of nodes up to 32 triangles instead of merging their children changed the
+  // node pairs the linked tori and env/rob visit by under 1 % and cost a second walk over the tree.
+  for (std::size_t i = m.tree.nodes.size(); i-- > 0;) {
+    const BvhNode& node = m.tree.nodes[i];
+    const Eigen::Vector3d c = node.center();
+    double reach = 0;
+    if (node.leaf()) {
+      double farthest = 0;
+      for (std::uint32_t s = node.first; s < node.first + node.count; ++s)
+        for (std::uint32_t v : triangles[m.tree.order[s]]) farthest = std::max(farthest, (vertices[v] - c).squaredNorm());
+      reach = std::sqrt(farthest);
+    } else {
+      for (std::uint32_t child : {node.first, node.first + 1})
+        reach = std::max(reach, (m.spheres[child].center - c).norm() + m.spheres[child].radius);
+      const Eigen::Vector3d half(0.5 * (node.hi[0] - node.lo[0]), 0.5 * (node.hi[1] - node.lo[1]),
+                                 0.5 * (node.hi[2] - node.lo[2]));
+      // The stored centre is the true box centre up to its rounding (ε of its coordinates), hence the pad.
+      reach = std::min(reach, half.norm() + 4.0 * kEps * c.cwiseAbs().sum());
+    }
+    m.spheres[i] = {c, paddedRadius(reach)};
+  }
   return m;
 }
 

@@ -27,6 +27,7 @@
 // AABB alone, the ball alone, or the larger of the two lower bounds. The AABB is used.
 #pragma once
 
+#include "mesh/big_array.h"
 #include "mesh/rss.h"
 #include "unidist/mesh.h"
 
@@ -71,8 +72,8 @@ struct BvhItem {
 };
 
 struct Bvh {
-  std::vector<BvhNode> nodes;         ///< nodes[0] is the root
-  std::vector<std::uint32_t> order;   ///< slot → item
+  BigVector<BvhNode> nodes;         ///< nodes[0] is the root
+  BigVector<std::uint32_t> order;   ///< slot → item
   int depth = 0;                      ///< deepest leaf (root = 0)
   std::size_t memoryBytes() const {
     return nodes.capacity() * sizeof(BvhNode) + order.capacity() * sizeof(std::uint32_t);
@@ -89,7 +90,7 @@ constexpr int kMaxLeafSize = 4;
 Bvh buildBvh(const std::vector<BvhItem>& items, int maxLeafSize = kMaxLeafSize);
 
 /// Slot range [begin, end) of every node (computed bottom-up from the leaves).
-std::vector<std::array<std::uint32_t, 2>> nodeRanges(const Bvh& bvh);
+BigVector<std::array<std::uint32_t, 2>> nodeRanges(const Bvh& bvh);
 
 /// Depth-first nearest-item search: visits the nearer child first and skips every node whose box is not
 /// closer than the best squared distance so far. `leaf(firstSlot, count, bestSq)` tests the items and lowers
@@ -145,12 +146,12 @@ struct NormalCone {
 /// The hierarchy a triangle mesh keeps (see the top of this file).
 struct MeshBvh {
   Bvh tree;
-  std::vector<BoundingSphere> spheres;                 ///< per node
-  std::vector<std::array<std::uint32_t, 2>> ranges;    ///< per node: slots [begin, end)
+  BigVector<BoundingSphere> spheres;                 ///< per node
+  BigVector<std::array<std::uint32_t, 2>> ranges;    ///< per node: slots [begin, end)
   std::size_t memoryBytes() const;
 
   /// Per node RSS, fitted on the first call (from the mesh this hierarchy was built for). Thread-safe.
-  const std::vector<Rss>& rss(const std::vector<Eigen::Vector3d>& vertices,
+  const BigVector<Rss>& rss(const std::vector<Eigen::Vector3d>& vertices,
                               const std::vector<TriangleMesh::Triangle>& triangles) const;
   bool rssFitted() const { return lazyRss->ready.load(std::memory_order_acquire); }
 
@@ -158,13 +159,13 @@ struct MeshBvh {
   struct LazyRss {
     std::once_flag once;
     std::atomic<bool> ready{false};
-    std::vector<Rss> volumes;
+    BigVector<Rss> volumes;
   };
   std::unique_ptr<LazyRss> lazyRss = std::make_unique<LazyRss>();  // behind a pointer: MeshBvh stays movable
 };
 
 /// Fits the RSS of every node of `bvh` (the work MeshBvh::rss does once).
-std::vector<Rss> fitNodeRss(const MeshBvh& bvh, const std::vector<Eigen::Vector3d>& vertices,
+BigVector<Rss> fitNodeRss(const MeshBvh& bvh, const std::vector<Eigen::Vector3d>& vertices,
                             const std::vector<TriangleMesh::Triangle>& triangles);
 
 MeshBvh buildMeshBvh(const std::vector<Eigen::Vector3d>& vertices,

@@ -156,14 +156,24 @@ Rss fitRss(const Eigen::Vector3d* p, std::size_t n) {
 }
 
 Rss fitRss(const Eigen::Matrix3d& axes, const Eigen::Vector3d* p, std::size_t n) {
+  // The two side axes as one pair of lanes, the normal apart: the build's hottest loop (every vertex of
+  // every node up to 256 triangles), in packed arithmetic without -march flags.
   const Eigen::Vector3d origin = p[0];
-  Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  const Eigen::Array2d ax(axes(0, 0), axes(0, 1)), ay(axes(1, 0), axes(1, 1)), az(axes(2, 0), axes(2, 1));
+  const double nx = axes(0, 2), ny = axes(1, 2), nz = axes(2, 2);
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  Eigen::Array2d lo01 = Eigen::Array2d::Constant(kInf), hi01 = -lo01;
+  double lo2 = kInf, hi2 = -kInf;
   for (std::size_t i = 0; i < n; ++i) {
-    const Eigen::Vector3d x = axes.transpose() * (p[i] - origin);
-    lo = lo.cwiseMin(x);
-    hi = hi.cwiseMax(x);
+    const Eigen::Vector3d d = p[i] - origin;
+    const Eigen::Array2d x01 = ax * d.x() + ay * d.y() + az * d.z();
+    const double x2 = nx * d.x() + ny * d.y() + nz * d.z();
+    lo01 = lo01.min(x01);
+    hi01 = hi01.max(x01);
+    lo2 = std::min(lo2, x2);
+    hi2 = std::max(hi2, x2);
   }
-  return fromExtents(axes, origin, lo, hi);
+  return fromExtents(axes, origin, Eigen::Vector3d(lo01[0], lo01[1], lo2), Eigen::Vector3d(hi01[0], hi01[1], hi2));
 }
 
 Rss mergeRss(const Eigen::Matrix3d& axes, const Rss& a, const Rss& b) {

@@ -12,8 +12,8 @@ std::size_t WindingData::memoryBytes() const {
 
 WindingData buildWindingData(const MeshBvh& bvh, const std::vector<TriangleMesh::Triangle>& triangles,
                              const std::vector<std::uint32_t>& twin) {
-  const std::vector<BvhNode>& nodes = bvh.tree.nodes;
-  const std::vector<std::uint32_t>& order = bvh.tree.order;
+  const auto& nodes = bvh.tree.nodes;
+  const auto& order = bvh.tree.order;
   std::vector<std::uint32_t> slotOf(order.size());
   for (std::uint32_t s = 0; s < order.size(); ++s) slotOf[order[s]] = s;
 
@@ -56,7 +56,7 @@ double solidAngle(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eige
 double windingNumber(const Eigen::Vector3d& q, const MeshBvh& bvh, const WindingData& data,
                      const std::vector<Eigen::Vector3d>& vertices,
                      const std::vector<TriangleMesh::Triangle>& triangles) {
-  const std::vector<BvhNode>& nodes = bvh.tree.nodes;
+  const auto& nodes = bvh.tree.nodes;
   std::uint32_t stack[kMaxBvhDepth + 4];
   int top = 0;
   stack[top++] = 0;

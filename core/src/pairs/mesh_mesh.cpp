@@ -20,8 +20,8 @@ namespace {
 /// One side of the search: its hierarchy, per-node balls and (meshes) per-node RSS.
 struct Side {
   const mesh::Bvh* tree;
-  const std::vector<BoundingSphere>* spheres;
-  const std::vector<mesh::Rss>* rss = nullptr;
+  const mesh::BigVector<BoundingSphere>* spheres;
+  const mesh::BigVector<mesh::Rss>* rss = nullptr;
 };
 
 /// Best pair found so far, in A's frame.
