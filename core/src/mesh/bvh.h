@@ -16,8 +16,9 @@
 // Bounding volumes: every node has an exact AABB of its items (tight, computed from the items' boxes). The
 // mesh hierarchy adds per node, in parallel arrays so further volume types (OBB, RSS for mesh–mesh searches)
 // can be added the same way without touching the others:
-//  * a ball centred at the AABB centre whose radius is the largest distance to a vertex of the node's
-//    triangles, padded by a few ulps: it provably holds every triangle (a triangle is the hull of its vertices);
+//  * a ball centred at the AABB centre, padded by a few ulps: a leaf's radius is the largest distance to a
+//    corner of its triangles (a triangle is the hull of its vertices), an internal node's reaches its
+//    children's balls (capped by the box's half diagonal), so it provably holds every triangle below;
 //  * the node's slot range;
 //  * a rectangle swept sphere (RSS, mesh/rss.h) holding the node's triangles, for mesh–mesh pair bounds (fitted
 //    to the vertices; above 256 triangles merged from the children). Fitted lazily by rss(), on the first
