@@ -401,10 +401,16 @@ TEST(MeshVolumes, BigVectorKeepsItsElementsAcrossTheThreshold) {
   for (std::uint64_t i = 0; i < big; ++i) v.push_back(i * 2654435761u);
   EXPECT_EQ(reinterpret_cast<std::uintptr_t>(v.data()) % unidist::mesh::kHugePageBytes, 0u);
   for (std::uint64_t i = 0; i < big; ++i) ASSERT_EQ(v[i], i * 2654435761u);
+  // Memory reports count whole huge pages.
+  const std::size_t footprint = unidist::mesh::footprintBytes(v);
+  EXPECT_EQ(footprint % unidist::mesh::kHugePageBytes, 0u);
+  EXPECT_GE(footprint, v.capacity() * sizeof(std::uint64_t));
+  EXPECT_LT(footprint, v.capacity() * sizeof(std::uint64_t) + unidist::mesh::kHugePageBytes);
   v.resize(10);
   v.shrink_to_fit();
   ASSERT_EQ(v.size(), 10u);
   for (std::uint64_t i = 0; i < 10; ++i) EXPECT_EQ(v[i], i * 2654435761u);
+  EXPECT_EQ(unidist::mesh::footprintBytes(v), v.capacity() * sizeof(std::uint64_t));
 }
 
 TEST(MeshVolumes, FitHoldsDegeneratePointSets) {

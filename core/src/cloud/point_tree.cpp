@@ -6,7 +6,7 @@
 namespace unidist::cloud {
 
 std::size_t PointTree::memoryBytes() const {
-  return tree.memoryBytes() + spheres.capacity() * sizeof(BoundingSphere) + ranges.capacity() * sizeof(ranges[0]);
+  return tree.memoryBytes() + mesh::footprintBytes(spheres) + mesh::footprintBytes(ranges);
 }
 
 PointTree buildPointTree(const std::vector<Eigen::Vector3d>& points) {

@@ -70,4 +70,12 @@ struct BigArrayAllocator {
 template <class T>
 using BigVector = std::vector<T, BigArrayAllocator<T>>;
 
+/// The memory a BigVector's buffer takes, huge-page rounding included.
+template <class T>
+std::size_t footprintBytes(const BigVector<T>& v) {
+  const std::size_t bytes = v.capacity() * sizeof(T);
+  if (!BigArrayAllocator<T>::big(v.capacity())) return bytes;
+  return (bytes + kHugePageBytes - 1) / kHugePageBytes * kHugePageBytes;
+}
+
 }  // namespace unidist::mesh

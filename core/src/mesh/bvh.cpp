@@ -284,9 +284,8 @@ BigVector<std::array<std::uint32_t, 2>> nodeRanges(const Bvh& bvh) {
 }
 
 std::size_t MeshBvh::memoryBytes() const {
-  const std::size_t rssBytes = rssFitted() ? lazyRss->volumes.capacity() * sizeof(Rss) : 0;
-  return tree.memoryBytes() + spheres.capacity() * sizeof(BoundingSphere) + ranges.capacity() * sizeof(ranges[0]) +
-         rssBytes;
+  const std::size_t rssBytes = rssFitted() ? footprintBytes(lazyRss->volumes) : 0;
+  return tree.memoryBytes() + footprintBytes(spheres) + footprintBytes(ranges) + rssBytes;
 }
 
 const BigVector<Rss>& MeshBvh::rss(const std::vector<Eigen::Vector3d>& vertices,

@@ -76,9 +76,7 @@ struct Bvh {
   BigVector<BvhNode> nodes;         ///< nodes[0] is the root
   BigVector<std::uint32_t> order;   ///< slot → item
   int depth = 0;                      ///< deepest leaf (root = 0)
-  std::size_t memoryBytes() const {
-    return nodes.capacity() * sizeof(BvhNode) + order.capacity() * sizeof(std::uint32_t);
-  }
+  std::size_t memoryBytes() const { return footprintBytes(nodes) + footprintBytes(order); }
 };
 
 /// Deepest a tree built by buildBvh can be, so traversal stacks of this size never overflow.
