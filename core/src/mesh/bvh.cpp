@@ -40,7 +40,7 @@ struct Task {
 // The items are moved, not indexed, while building: every pass over a node's slots is then a sequential scan
 // (an index array would make each of the ~log n passes over all items a random walk through memory).
 struct WorkItem {
-  Lane4 lo, hi;  // the fourth lanes are 0
+  Lane4 lo, hi;  // the fourth lane of lo holds the item's bin in the split under way (nothing else reads it)
   Lane4 centroid() const { return 0.5f * (lo + hi); }  // the box centre stands for the item
 };
 
@@ -83,8 +83,8 @@ std::uint32_t sahSplit(Work& w, std::uint32_t b, std::uint32_t e, int axis, floa
   const int bins = static_cast<int>(std::min<std::uint32_t>(kBins, std::max<std::uint32_t>(4, (e - b) / 2)));
   const float scale = static_cast<float>(bins) / extent;
   if (!std::isfinite(scale)) return e;
-  const auto binOf = [&](const WorkItem& it) {
-    const int k = static_cast<int>((0.5f * (it.lo[axis] + it.hi[axis]) - cmin) * scale);
+  const auto binOf = [&](float centre) {
+    const int k = static_cast<int>((centre - cmin) * scale);
     return std::min(std::max(k, 0), bins - 1);
   };
   // Two sets of bins for alternate items, merged after: neighbouring items mostly share a bin, and one set
@@ -96,10 +96,11 @@ std::uint32_t sahSplit(Work& w, std::uint32_t b, std::uint32_t e, int axis, floa
     boxes[k] = cboxes[k] = boxes2[k] = cboxes2[k] = BoxF::empty();
     counts[k] = counts2[k] = 0;
   }
-  const auto add = [&](const WorkItem& it, BoxF* bx, BoxF* cb, std::uint32_t* cn) {
-    const int k = binOf(it);
-    bx[k].extend(it.lo, it.hi);
+  const auto add = [&](WorkItem& it, BoxF* bx, BoxF* cb, std::uint32_t* cn) {
     const Lane4 m = it.centroid();
+    const int k = binOf(m[axis]);
+    it.lo[3] = static_cast<float>(k);  // kept for the partition below
+    bx[k].extend(it.lo, it.hi);
     cb[k].extend(m, m);
     ++cn[k];
   };
@@ -141,7 +142,8 @@ std::uint32_t sahSplit(Work& w, std::uint32_t b, std::uint32_t e, int axis, floa
   }
   if (bestPlane < 0) return e;
   for (int k = 0; k < bins; ++k) (k < bestPlane ? left : right).centroids.extend(cboxes[k]);
-  return w.partition(b, e, [&](const WorkItem& it) { return binOf(it) < bestPlane; });
+  const auto plane = static_cast<float>(bestPlane);
+  return w.partition(b, e, [plane](const WorkItem& it) { return it.lo[3] < plane; });
 }
 
 /// buildBvh over n items whose boxes boxOf(i) gives (three calls per item: meshes compute their triangles'
