@@ -40,26 +40,27 @@ struct Task {
 // The items are moved, not indexed, while building: every pass over a node's slots is then a sequential scan
 // (an index array would make each of the ~log n passes over all items a random walk through memory).
 struct WorkItem {
-  Lane4 lo, hi;  // the fourth lane of lo holds the item's bin in the split under way (nothing else reads it)
+  Lane4 lo, hi;  // the fourth lanes are 0
   Lane4 centroid() const { return 0.5f * (lo + hi); }  // the box centre stands for the item
 };
 
 struct Work {
   BigVector<WorkItem> items;
   BigVector<std::uint32_t> ids;
+  BigVector<std::uint8_t> bins;  // each item's bin in the split under way (binned once, read by the partition)
   void swap(std::uint32_t i, std::uint32_t j) {
     std::swap(items[i], items[j]);
     std::swap(ids[i], ids[j]);
   }
-  /// Moves the items for which `left` holds to the front of [b, e); returns the first of the others.
-  template <class Pred>
-  std::uint32_t partition(std::uint32_t b, std::uint32_t e, Pred left) {
+  /// Moves the items whose bin is below `plane` to the front of [b, e); returns the first of the others.
+  std::uint32_t partitionByBin(std::uint32_t b, std::uint32_t e, std::uint8_t plane) {
     std::uint32_t i = b, j = e;
     for (;;) {
-      while (i < j && left(items[i])) ++i;
-      while (i < j && !left(items[j - 1])) --j;
+      while (i < j && bins[i] < plane) ++i;
+      while (i < j && bins[j - 1] >= plane) --j;
       if (i >= j) return i;
       swap(i, j - 1);
+      std::swap(bins[i], bins[j - 1]);
       ++i;
       --j;
     }
@@ -96,20 +97,21 @@ std::uint32_t sahSplit(Work& w, std::uint32_t b, std::uint32_t e, int axis, floa
     boxes[k] = cboxes[k] = boxes2[k] = cboxes2[k] = BoxF::empty();
     counts[k] = counts2[k] = 0;
   }
-  const auto add = [&](WorkItem& it, BoxF* bx, BoxF* cb, std::uint32_t* cn) {
+  const auto add = [&](std::uint32_t i, BoxF* bx, BoxF* cb, std::uint32_t* cn) {
+    const WorkItem& it = w.items[i];
     const Lane4 m = it.centroid();
     const int k = binOf(m[axis]);
-    it.lo[3] = static_cast<float>(k);  // kept for the partition below
+    w.bins[i] = static_cast<std::uint8_t>(k);
     bx[k].extend(it.lo, it.hi);
     cb[k].extend(m, m);
     ++cn[k];
   };
   std::uint32_t i = b;
   for (; i + 1 < e; i += 2) {
-    add(w.items[i], boxes, cboxes, counts);
-    add(w.items[i + 1], boxes2, cboxes2, counts2);
+    add(i, boxes, cboxes, counts);
+    add(i + 1, boxes2, cboxes2, counts2);
   }
-  if (i < e) add(w.items[i], boxes, cboxes, counts);
+  if (i < e) add(i, boxes, cboxes, counts);
   for (int k = 0; k < bins; ++k) {
     boxes[k].extend(boxes2[k]);
     cboxes[k].extend(cboxes2[k]);
@@ -142,8 +144,7 @@ std::uint32_t sahSplit(Work& w, std::uint32_t b, std::uint32_t e, int axis, floa
   }
   if (bestPlane < 0) return e;
   for (int k = 0; k < bins; ++k) (k < bestPlane ? left : right).centroids.extend(cboxes[k]);
-  const auto plane = static_cast<float>(bestPlane);
-  return w.partition(b, e, [plane](const WorkItem& it) { return it.lo[3] < plane; });
+  return w.partitionByBin(b, e, static_cast<std::uint8_t>(bestPlane));
 }
 
 /// buildBvh over n items whose boxes boxOf(i) gives (three calls per item: meshes compute their triangles'
@@ -153,6 +154,7 @@ Bvh buildBvhOf(std::uint32_t n, const BoxOf& boxOf, int maxLeafSize) {
   Work w;
   w.items.resize(n);
   w.ids.resize(n);
+  w.bins.resize(n);
   // Single precision relative to the centre of everything, so a small model far from its origin keeps its
   // detail (floats of raw coordinates near 1e4 would merge features 1e-3 apart).
   Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
