@@ -4,6 +4,7 @@
 #include "nurbs/interval.h"
 #include "nurbs/patch_tree.h"
 
+#include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 
 #include <cmath>
@@ -20,58 +21,88 @@ using Derivatives = std::array<std::array<IntervalVec3, kOrder + 1>, kOrder + 1>
 /// The same of the homogeneous (X, W).
 using HomogeneousDerivatives = std::array<std::array<std::array<Interval, 4>, kOrder + 1>, kOrder + 1>;
 
-double fallingFactorial(int n, int k) {
-  double f = 1;
-  for (int q = 0; q < k; ++q) f *= n - q;
-  return f;
-}
+/// The patch's homogeneous derivatives (X, W)_(i,j), i + j <= 3, in Bernstein form: net (i, j) is the (i, j)-th
+/// forward difference of the control net times n!/(n−i)!·m!/(m−j)!, of degree (n − i, m − j).
+class DifferenceNets {
+ public:
+  explicit DifferenceNets(const RationalBezierPatch& p) : n_(p.degreeU), m_(p.degreeV) {
+    net_[0][0] = p.net;
+    for (int i = 0; i <= std::min(kOrder, n_); ++i)
+      for (int j = 0; i + j <= kOrder && j <= m_; ++j) {
+        if (i == 0 && j == 0) continue;
+        // Differentiate the previous net along u (j == 0) or along v.
+        const bool alongU = j == 0;
+        const int pi = alongU ? i - 1 : i, pj = alongU ? j : j - 1;
+        const int degree = alongU ? n_ - pi : m_ - pj;
+        auto& out = net_[index(i)][index(j)];
+        out.resize(static_cast<std::size_t>((n_ - i + 1) * (m_ - j + 1)));
+        for (int a = 0; a <= n_ - i; ++a)
+          for (int b = 0; b <= m_ - j; ++b)
+            out[static_cast<std::size_t>(a * (m_ - j + 1) + b)] =
+                degree * (alongU ? at(pi, pj, a + 1, b) - at(pi, pj, a, b) : at(pi, pj, a, b + 1) - at(pi, pj, a, b));
+      }
+  }
 
-/// Bernstein coefficient (a, b) of the homogeneous derivative (X, W)_(i,j): the (i, j)-th forward difference of
-/// the net times n!/(n−i)!·m!/(m−j)!.
-Eigen::Vector4d differenceCoefficient(const RationalBezierPatch& p, int i, int j, int a, int b) {
-  Eigen::Vector4d c = Eigen::Vector4d::Zero();
-  for (int k = 0; k <= i; ++k)
-    for (int l = 0; l <= j; ++l) {
-      const double sign = ((i - k + j - l) % 2 == 0) ? 1.0 : -1.0;
-      c += sign * binomial(i, k) * binomial(j, l) * p.at(a + k, b + l);
-    }
-  return fallingFactorial(p.degreeU, i) * fallingFactorial(p.degreeV, j) * c;
-}
+  /// Ranges of (X, W)_(i,j) over the whole patch: a Bernstein polynomial lies within its coefficients' range.
+  HomogeneousDerivatives ranges() const {
+    HomogeneousDerivatives H{};
+    forEachDerivative([&](int i, int j) {
+      auto& range = H[index(i)][index(j)];
+      const auto& net = net_[index(i)][index(j)];
+      for (int q = 0; q < 4; ++q) {
+        double lo = net[0][q], hi = lo;
+        for (const Eigen::Vector4d& c : net) lo = std::min(lo, c[q]), hi = std::max(hi, c[q]);
+        range[static_cast<std::size_t>(q)] = {lo, hi};
+      }
+    });
+    return H;
+  }
 
-/// Over the whole patch: a Bernstein polynomial lies within its coefficients' range.
-HomogeneousDerivatives homogeneousRanges(const RationalBezierPatch& p) {
-  HomogeneousDerivatives H{};
-  for (int i = 0; i <= std::min(kOrder, p.degreeU); ++i)
-    for (int j = 0; i + j <= kOrder && j <= p.degreeV; ++j) {
-      auto& range = H[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)];
-      for (int a = 0; a + i <= p.degreeU; ++a)
-        for (int b = 0; b + j <= p.degreeV; ++b) {
-          const Eigen::Vector4d c = differenceCoefficient(p, i, j, a, b);
-          for (int q = 0; q < 4; ++q) {
-            Interval& r = range[static_cast<std::size_t>(q)];
-            r = (a == 0 && b == 0) ? Interval{c[q], c[q]} : Interval{std::min(r.lo, c[q]), std::max(r.hi, c[q])};
-          }
-        }
-    }
-  return H;
-}
-
-/// At (s, t): the difference nets summed with the Bernstein basis of their degrees.
-HomogeneousDerivatives homogeneousValues(const RationalBezierPatch& p, double s, double t) {
-  const auto bernstein = [](int n, int k, double x) {
-    return binomial(n, k) * std::pow(x, k) * std::pow(1 - x, n - k);
-  };
-  HomogeneousDerivatives H{};
-  for (int i = 0; i <= std::min(kOrder, p.degreeU); ++i)
-    for (int j = 0; i + j <= kOrder && j <= p.degreeV; ++j) {
+  /// Values of (X, W)_(i,j) at (s, t) (zero-width intervals).
+  HomogeneousDerivatives values(double s, double t) const {
+    std::array<std::array<double, kMaxNurbsDegree + 1>, kMaxNurbsDegree + 1> bu{}, bv{};
+    basis(n_, s, bu);
+    basis(m_, t, bv);
+    HomogeneousDerivatives H{};
+    forEachDerivative([&](int i, int j) {
       Eigen::Vector4d v = Eigen::Vector4d::Zero();
-      for (int a = 0; a + i <= p.degreeU; ++a)
-        for (int b = 0; b + j <= p.degreeV; ++b)
-          v += bernstein(p.degreeU - i, a, s) * bernstein(p.degreeV - j, b, t) * differenceCoefficient(p, i, j, a, b);
-      for (int q = 0; q < 4; ++q) H[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)][static_cast<std::size_t>(q)] = {v[q], v[q]};
+      for (int a = 0; a <= n_ - i; ++a) {
+        Eigen::Vector4d row = Eigen::Vector4d::Zero();
+        for (int b = 0; b <= m_ - j; ++b) row += bv[index(m_ - j)][index(b)] * at(i, j, a, b);
+        v += bu[index(n_ - i)][index(a)] * row;
+      }
+      for (int q = 0; q < 4; ++q) H[index(i)][index(j)][static_cast<std::size_t>(q)] = {v[q], v[q]};
+    });
+    return H;
+  }
+
+ private:
+  static std::size_t index(int k) { return static_cast<std::size_t>(k); }
+
+  const Eigen::Vector4d& at(int i, int j, int a, int b) const {
+    return net_[index(i)][index(j)][static_cast<std::size_t>(a * (m_ - j + 1) + b)];
+  }
+
+  template <typename F>
+  void forEachDerivative(F&& f) const {
+    for (int i = 0; i <= std::min(kOrder, n_); ++i)
+      for (int j = 0; i + j <= kOrder && j <= m_; ++j) f(i, j);
+  }
+
+  /// Bernstein polynomials of every degree up to `degree` at x: out[d][k] = B_k^d(x).
+  static void basis(int degree, double x, std::array<std::array<double, kMaxNurbsDegree + 1>, kMaxNurbsDegree + 1>& out) {
+    out[0][0] = 1;
+    for (int d = 1; d <= degree; ++d) {
+      out[index(d)][0] = (1 - x) * out[index(d - 1)][0];
+      for (int k = 1; k < d; ++k)
+        out[index(d)][index(k)] = (1 - x) * out[index(d - 1)][index(k)] + x * out[index(d - 1)][index(k - 1)];
+      out[index(d)][index(d)] = x * out[index(d - 1)][index(d - 1)];
     }
-  return H;
-}
+  }
+
+  int n_, m_;
+  std::array<std::array<std::vector<Eigen::Vector4d>, kOrder + 1>, kOrder + 1> net_;
+};
 
 /// S_(i,j) from X = W·S by Leibniz: S_α = (X_α − Σ_{0<β<=α} C(α,β) W_β S_(α−β)) / W, from S itself. False for a
 /// weight range that is not positive.
@@ -105,15 +136,15 @@ bool encloseOver(const RationalBezierPatch& p, double ws, double wt, Derivatives
       lo = lo.cwiseMin(p.point(i, j));
       hi = hi.cwiseMax(p.point(i, j));
     }
-  if (!rationalDerivatives(homogeneousRanges(p), {Interval{lo[0], hi[0]}, {lo[1], hi[1]}, {lo[2], hi[2]}}, S)) return false;
+  if (!rationalDerivatives(DifferenceNets(p).ranges(), {Interval{lo[0], hi[0]}, {lo[1], hi[1]}, {lo[2], hi[2]}}, S)) return false;
   for (int i = 0; i <= kOrder; ++i)
     for (int j = 0; i + j <= kOrder; ++j)
       for (Interval& c : S[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)]) c = (1 / (std::pow(ws, i) * std::pow(wt, j))) * c;
   return true;
 }
 
-bool valuesAt(const RationalBezierPatch& p, double s, double t, Derivatives& S) {
-  const HomogeneousDerivatives H = homogeneousValues(p, s, t);
+bool valuesAt(const DifferenceNets& p, double s, double t, Derivatives& S) {
+  const HomogeneousDerivatives H = p.values(s, t);
   const double w = H[0][0][3].lo;
   IntervalVec3 point;
   for (std::size_t q = 0; q < 3; ++q) point[q] = {H[0][0][q].lo / w, H[0][0][q].lo / w};
@@ -156,6 +187,23 @@ double dotDeviation(const IntervalVec3& a, const IntervalVec3& ax, const Interva
 /// Upper bound of the spectral radius of a non-negative symmetric matrix.
 double spectralBound(const Eigen::Matrix4d& m) { return std::min(m.rowwise().sum().maxCoeff(), m.norm()); }
 
+/// Over the box, where f = ½|S_A − S_B|² is convex: |S_A − S_B| >= sqrt(2 (f(z) + min over the box of g(z)·(y − z))),
+/// less rounding (each factor's coordinates to kRounding of `scale`).
+double tangentBound(const DifferenceNets& a, const DifferenceNets& b, const Eigen::Vector4d& lo,
+                    const Eigen::Vector4d& hi, const Eigen::Vector4d& z, double scale) {
+  Derivatives zA, zB;
+  if (!valuesAt(a, z[0], z[1], zA) || !valuesAt(b, z[2], z[3], zB)) return 0;
+  const Residual at{zA, zB};
+  const Eigen::Vector3d r = mid(at({}));
+  double f = 0.5 * r.squaredNorm();
+  for (int c = 0; c < 4; ++c) {
+    const Eigen::Vector3d J = mid(at({c}));
+    const double g = r.dot(J), slack = kRounding * scale * J.norm();
+    f += std::min(g * (lo[c] - z[c]), g * (hi[c] - z[c])) - slack * std::max(z[c] - lo[c], hi[c] - z[c]);
+  }
+  return std::max(0.0, std::sqrt(2 * std::max(0.0, f)) - kRounding * scale);
+}
+
 }  // namespace
 
 ConvexityCertificate certifyConvexPair(const RationalBezierPatch& a, const RationalBezierPatch& b,
@@ -170,10 +218,11 @@ ConvexityCertificate certifyConvexPair(const RationalBezierPatch& a, const Ratio
   const Eigen::Vector3d centre = 0.5 * (a.evaluate(x[0], x[1]) + X_AB * b.evaluate(x[2], x[3]));
   const Eigen::Isometry3d toCentre(Eigen::Translation3d(-centre));
   const RationalBezierPatch aC = mapped(a, toCentre), bC = mapped(b, toCentre * X_AB);
+  const DifferenceNets netsA(aC), netsB(bC);
   Derivatives boxA, boxB, atA, atB;
   if (!encloseOver(subpatch(aC, lo[0], hi[0], lo[1], hi[1]), width[0], width[1], boxA) ||
       !encloseOver(subpatch(bC, lo[2], hi[2], lo[3], hi[3]), width[2], width[3], boxB) ||
-      !valuesAt(aC, x[0], x[1], atA) || !valuesAt(bC, x[2], x[3], atB))
+      !valuesAt(netsA, x[0], x[1], atA) || !valuesAt(netsB, x[2], x[3], atB))
     return out;
   const Residual box{boxA, boxB}, at{atA, atB};
 
@@ -215,20 +264,31 @@ ConvexityCertificate certifyConvexPair(const RationalBezierPatch& a, const Ratio
     const double pointPart = (P * dH * P).cwiseAbs().rowwise().sum().maxCoeff();  // >= its spectral norm
     relative += reach[c] * (pointPart + spectralBound(P.cwiseAbs() * deviation * P.cwiseAbs()));
   }
-  // Rounding of H(x), of its eigen-decomposition and of the sums above.
+  // P H(x) P is I only up to the eigen-decomposition's rounding: its residual counts against the margin too, and
+  // so does the rounding of H(x) itself and of the sums above.
+  relative += (P * Hx * P - Eigen::Matrix4d::Identity()).cwiseAbs().rowwise().sum().maxCoeff();
   relative += spectralBound(P.cwiseAbs() * Eigen::Matrix4d::Constant(1e-12 * Hx.cwiseAbs().maxCoeff()) * P.cwiseAbs());
   out.ratio = relative;
   if (!(out.ratio < 1)) return out;
 
-  // Convex: f(y) >= f(x) + g·(y − x) on the box; g's rounding (each factor's coordinates to kRounding) widened.
+  // Convex: f(y) >= f(z) + g(z)·(y − z) on the box for every z in it. Newton's end is stationary only to the
+  // resolution of its descent test, so z is x after up to two plain Newton steps (kept in the box).
   const double scale = centre.cwiseAbs().maxCoeff() + r.norm();
-  double f = 0.5 * r.squaredNorm();
-  for (int c = 0; c < 4; ++c) {
-    const double slack = kRounding * scale * J[static_cast<std::size_t>(c)].norm();
-    f += std::min(g[c] * (lo[c] - x[c]), g[c] * (hi[c] - x[c])) - slack * reach[c];
+  const Eigen::LDLT<Eigen::Matrix4d> solver(Hx);
+  double lower = tangentBound(netsA, netsB, lo, hi, x, scale);
+  Eigen::Vector4d z = x;
+  for (int step = 0; step < 2; ++step) {
+    Derivatives zA, zB;
+    if (!valuesAt(netsA, z[0], z[1], zA) || !valuesAt(netsB, z[2], z[3], zB)) break;
+    const Residual atZ{zA, zB};
+    const Eigen::Vector3d rz = mid(atZ({}));
+    Eigen::Vector4d gz;
+    for (int c = 0; c < 4; ++c) gz[c] = rz.dot(mid(atZ({c})));
+    z = (z - solver.solve(gz)).cwiseMax(lo).cwiseMin(hi);
+    lower = std::max(lower, tangentBound(netsA, netsB, lo, hi, z, scale));
   }
   out.proved = true;
-  out.lower = std::max(0.0, std::sqrt(2 * std::max(0.0, f)) - kRounding * scale);
+  out.lower = lower;
   return out;
 }
 
