@@ -25,7 +25,7 @@ constexpr int kPairBudget = 20000;
 constexpr double kFlatAngle = 0.5;  // a node with a narrower normal cone is polished by Newton when popped
 constexpr int kSeedPairs = 3;       // root pairs Newton starts from before the search
 constexpr double kSameEnd = 1e-9;   // Newton ends this close in parameters are one (certified once)
-constexpr double kFirstRegion = 1.0 / 16;  // the first convexity box tried around a Newton end (patch parameters)
+constexpr double kFirstRegion = 1.0 / 32;  // the first convexity box tried around a Newton end (patch parameters)
 constexpr int kRegionAttempts = 5;
 
 using Node = nurbs::PatchNode;
