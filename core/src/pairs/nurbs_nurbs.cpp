@@ -45,8 +45,11 @@ enum class Outcome { Proved, Touching, Exhausted };
 // nodes. A pair is dropped when (a) its proved lower bound — balls, then GJK between the two subpatches'
 // control-point hulls — cannot beat the best realised distance, or (b) it cannot hold an extremal pair: the
 // directions from A's ball to B's ball must be parallel to both normal cones (or, on a patch edge, orthogonal
-// to the edge's tangent cone; nodes holding a patch corner always qualify). Flat pairs are polished by Newton
-// on the extremal-distance equations, which realises the minimum early; the search then only proves it.
+// to the edge's tangent cone; nodes holding a patch corner always qualify). Newton on the extremal-distance
+// equations (from the lowest root pairs first, then from flat pairs away from earlier ends) realises the minimum
+// early; around each of its ends a convexity certificate (pair_convexity.h) proves a parameter box whose every
+// pair is settled by the distance there, so the search stops a few levels below it instead of at node sizes of
+// ~√tolerance, where the hull bounds would meet the tolerance.
 class PairSearch {
  public:
   /// With stopWhenApart the search ends as soon as its lower bound is positive (an overlap verdict needs no more).
@@ -271,15 +274,16 @@ class PairSearch {
     // Every segment from A's ball to B's ball points into `towards`; an extremal pair needs one of them
     // normal to both surfaces (or orthogonal to the edges they lie on).
     const nurbs::Cone towards = nurbs::coneTowards(cb, na->ball.center, na->ball.radius + nb->ball.radius);
-    if (!nurbs::mayHoldCritical(*na, towards, true) || !nurbs::mayHoldCritical(*nb, rotated(towards, R_BA_), true)) {
+    if (!nurbs::mayHoldCritical(*na, towards, true) || !nurbs::mayHoldCritical(*nb, rotated(towards, R_BA_), true))
       return;
-    }
     nurbs::controlPoints(*na, hullA_);
     nurbs::controlPoints(*nb, X_AB_, hullB_);
-    // The hulls' gap along one direction is a proved bound too: along the parent pair's closest-point
-    // direction (or between the balls' centres) it often prunes the pair without running GJK.
-    const Eigen::Vector3d along = hint.squaredNorm() > 0 ? hint : (cb - na->ball.center);
-    if (const double n = along.norm(); n > 0) {
+    // The hulls' gap along one direction is a proved bound too: along the parent pair's closest-point direction
+    // (or between the balls' centres) and along the best pair's, it often prunes the pair without running GJK.
+    for (const Eigen::Vector3d& along : {hint.squaredNorm() > 0 ? hint : Eigen::Vector3d(cb - na->ball.center),
+                                         Eigen::Vector3d(best_.pB - best_.pA)}) {
+      const double n = along.norm();
+      if (!(n > 0)) continue;
       const double byAxis = hullGap(along / n) - margin;
       if (byAxis >= best_.value - 0.5 * tolerance_) {
         lowerOfPruned_ = std::min(lowerOfPruned_, byAxis);
