@@ -98,24 +98,32 @@ TEST(PairConvexity, EveryProvedBoundHoldsAndNonConvexBoxesAreRefused) {
     const RationalBezierPatch& pb = b.patches()[m.patchB];
     const Box whole{Eigen::Vector4d::Zero(), Eigen::Vector4d::Ones()};
     EXPECT_FALSE(nurbs::certifyConvexPair(pa, pb, p.X_WB, whole.lo, whole.hi, m.hit.x).proved);
-    for (int k = 0; k < 200; ++k) {
-      // Centres near the minimum (not stationary points), boxes from 1/256 to 1/8.
+    const auto squared = [&](const Eigen::Vector4d& y) { return std::pow(distanceAt(pa, pb, p.X_WB, y), 2); };
+    for (int k = 0; k < 300; ++k) {
+      // Centres near the minimum and farther off (not stationary points), boxes from 1/256 to 1/2.
+      const double spread = k % 2 ? 0.02 : 0.5;
       const Eigen::Vector4d x =
-          (m.hit.x + 0.02 * Eigen::Vector4d(unit(rng) - 0.5, unit(rng) - 0.5, unit(rng) - 0.5, unit(rng) - 0.5))
+          (m.hit.x + spread * Eigen::Vector4d(unit(rng) - 0.5, unit(rng) - 0.5, unit(rng) - 0.5, unit(rng) - 0.5))
               .cwiseMax(0.0)
               .cwiseMin(1.0);
-      const Box box = boxAround(x, std::pow(2.0, -8 + 5 * unit(rng)));
+      const Box box = boxAround(x, std::pow(2.0, -8 + 7 * unit(rng)));
       const nurbs::ConvexityCertificate c = nurbs::certifyConvexPair(pa, pb, p.X_WB, box.lo, box.hi, x);
       if (!c.proved) continue;
       ++proved;
       EXPECT_LE(c.lower, distanceAt(pa, pb, p.X_WB, x));
       for (int s = 0; s < 200; ++s) {
-        const Eigen::Vector4d t(unit(rng), unit(rng), unit(rng), unit(rng));
-        EXPECT_GE(distanceAt(pa, pb, p.X_WB, box.lo + t.cwiseProduct(box.hi - box.lo)), c.lower - 1e-14);
+        const auto sample = [&] {
+          const Eigen::Vector4d t(unit(rng), unit(rng), unit(rng), unit(rng));
+          return Eigen::Vector4d(box.lo + t.cwiseProduct(box.hi - box.lo));
+        };
+        const Eigen::Vector4d y1 = sample(), y2 = sample();
+        EXPECT_GE(distanceAt(pa, pb, p.X_WB, y1), c.lower - 1e-14);
+        // Convex: the squared distance at a midpoint is at most the mean of the two ends'.
+        EXPECT_LE(squared(0.5 * (y1 + y2)), 0.5 * (squared(y1) + squared(y2)) + 1e-14);
       }
     }
   }
-  EXPECT_GT(proved, 100);
+  EXPECT_GT(proved, 80);
   // Coaxial tori touch along a circle of minima: the Hessian is singular there, and no box is convex.
   const Placement& p = placement("torus-torus coaxial");
   const NurbsModel a({p.a}, true), b({p.b}, true);
