@@ -133,7 +133,7 @@ class PairSearch {
     return false;
   }
 
-  /// Certifies convexity around every untried Newton end inside the pair: boxes centred on it, from half the
+  /// Certifies convexity around every untried Newton end inside the pair: boxes centred on it, from 1/32 of the
   /// patch down, each next size from how far the last one missed (the certificate's ratio grows with the box).
   void certifyAround(const Node& na, const Node& nb) {
     for (NewtonEnd& e : ends_) {
