@@ -2,6 +2,7 @@
 
 #include "convex/gjk.h"
 #include "generic/generic_distance.h"
+#include "nurbs/pair_convexity.h"
 #include "nurbs/pair_newton.h"
 #include "nurbs/patch_tree.h"
 #include "unidist/nurbs.h"
@@ -22,6 +23,10 @@ constexpr int kMaxDepth = 40;     // beyond this, rounding and not the bound lim
 // torus's axis — can need far more at a tight tolerance). Small enough that such a case stays in milliseconds.
 constexpr int kPairBudget = 20000;
 constexpr double kFlatAngle = 0.5;  // a node with a narrower normal cone is polished by Newton when popped
+constexpr int kSeedPairs = 3;       // root pairs Newton starts from before the search
+constexpr double kSameEnd = 1e-9;   // Newton ends this close in parameters are one (certified once)
+constexpr double kFirstRegion = 1.0 / 32;  // the first convexity box tried around a Newton end (patch parameters)
+constexpr int kRegionAttempts = 5;
 
 using Node = nurbs::PatchNode;
 
@@ -40,8 +45,11 @@ enum class Outcome { Proved, Touching, Exhausted };
 // nodes. A pair is dropped when (a) its proved lower bound — balls, then GJK between the two subpatches'
 // control-point hulls — cannot beat the best realised distance, or (b) it cannot hold an extremal pair: the
 // directions from A's ball to B's ball must be parallel to both normal cones (or, on a patch edge, orthogonal
-// to the edge's tangent cone; nodes holding a patch corner always qualify). Flat pairs are polished by Newton
-// on the extremal-distance equations, which realises the minimum early; the search then only proves it.
+// to the edge's tangent cone; nodes holding a patch corner always qualify). Newton on the extremal-distance
+// equations (from the lowest root pairs first, then from flat pairs away from earlier ends) realises the minimum
+// early; around each of its ends a convexity certificate (pair_convexity.h) proves a parameter box whose every
+// pair is settled by the distance there, so the search stops a few levels below it instead of at node sizes of
+// ~√tolerance, where the hull bounds would meet the tolerance.
 class PairSearch {
  public:
   /// With stopWhenApart the search ends as soon as its lower bound is positive (an overlap verdict needs no more).
@@ -54,6 +62,7 @@ class PairSearch {
     seed();
     for (const auto& ra : a_.forest().roots)
       for (const auto& rb : b_.forest().roots) visit(ra.get(), rb.get());
+    seedFromLowestPairs();
     int popped = 0;
     while (!open_.empty()) {
       const OpenPair top = open_.top();
@@ -63,8 +72,11 @@ class PairSearch {
       if (popped >= kPairBudget) return Outcome::Exhausted;
       open_.pop();
       ++popped;
+      if (settledByRegion(*top.a, *top.b)) continue;
+      certifyAround(*top.a, *top.b);
+      if (settledByRegion(*top.a, *top.b)) continue;
       ++iterations_;
-      if (isFlat(*top.a) && isFlat(*top.b) && awayFromBest(top)) polishFrom(*top.a, *top.b);
+      if (isFlat(*top.a) && isFlat(*top.b) && !nearNewtonEnd(top)) polishFrom(*top.a, *top.b);
       const bool splitA = top.a->ball.radius >= top.b->ball.radius;
       const Node* n = splitA ? top.a : top.b;
       if (n->depth >= kMaxDepth) {
@@ -72,7 +84,7 @@ class PairSearch {
         continue;
       }
       for (const Node* c : (splitA ? a_.forest() : b_.forest()).children(*n, arena_))
-        splitA ? visit(c, top.b) : visit(top.a, c);
+        splitA ? visit(c, top.b, top.wB - top.wA) : visit(top.a, c, top.wB - top.wA);
     }
     return best_.value <= 0.5 * tolerance_ ? Outcome::Touching : Outcome::Proved;
   }
@@ -90,28 +102,118 @@ class PairSearch {
   struct Best : nurbs::PairHit {
     int patchA = -1, patchB = -1;
   };
+  /// Where Newton ended (a stationary point, or a box corner): a centre for a convexity certificate.
+  struct NewtonEnd {
+    int patchA, patchB;
+    Eigen::Vector4d x;
+    Eigen::Vector3d pA, pB;
+    bool tried = false;
+  };
+  /// A box of two patches' parameters over which the squared distance is proved convex: every pair of nodes
+  /// inside it is bounded below by `lower` at once.
+  struct ConvexRegion {
+    int patchA, patchB;
+    Eigen::Vector4d lo, hi;
+    double lower;
+  };
+
+  static bool inBox(const Node& na, const Node& nb, const Eigen::Vector4d& lo, const Eigen::Vector4d& hi) {
+    return na.s0 >= lo[0] && na.s1 <= hi[0] && na.t0 >= lo[1] && na.t1 <= hi[1] && nb.s0 >= lo[2] &&
+           nb.s1 <= hi[2] && nb.t0 >= lo[3] && nb.t1 <= hi[3];
+  }
+
+  /// A pair inside a certified region whose bound cannot beat the best is settled by that bound.
+  bool settledByRegion(const Node& na, const Node& nb) {
+    for (const ConvexRegion& r : regions_)
+      if (r.patchA == na.patch && r.patchB == nb.patch && r.lower >= best_.value - 0.5 * tolerance_ &&
+          inBox(na, nb, r.lo, r.hi)) {
+        lowerOfPruned_ = std::min(lowerOfPruned_, r.lower);
+        return true;
+      }
+    return false;
+  }
+
+  /// Certifies convexity around every untried Newton end inside the pair: boxes centred on it, from 1/32 of the
+  /// patch down, each next size from how far the last one missed (the certificate's ratio grows with the box).
+  void certifyAround(const Node& na, const Node& nb) {
+    for (NewtonEnd& e : ends_) {
+      if (e.tried || e.patchA != na.patch || e.patchB != nb.patch) continue;
+      const Eigen::Vector4d& x = e.x;
+      if (x[0] < na.s0 || x[0] > na.s1 || x[1] < na.t0 || x[1] > na.t1 || x[2] < nb.s0 || x[2] > nb.s1 ||
+          x[3] < nb.t0 || x[3] > nb.t1)
+        continue;
+      e.tried = true;
+      double size = kFirstRegion;
+      for (int attempt = 0; attempt < kRegionAttempts; ++attempt) {
+        const Eigen::Vector4d lo = (x.array() - 0.5 * size).max(0.0), hi = (x.array() + 0.5 * size).min(1.0);
+        const nurbs::ConvexityCertificate c =
+            nurbs::certifyConvexPair(a_.patches()[static_cast<std::size_t>(e.patchA)],
+                                     b_.patches()[static_cast<std::size_t>(e.patchB)], X_AB_, lo, hi, x);
+        if (c.proved) {
+          regions_.push_back({e.patchA, e.patchB, lo, hi, c.lower});
+          break;
+        }
+        if (!std::isfinite(c.ratio)) break;  // not a strict minimum there: no box around it is convex
+        size *= std::min(0.9, std::sqrt(0.6 / c.ratio));
+      }
+    }
+  }
 
   static bool isFlat(const Node& n) { return !n.normal.all && n.normal.angle <= kFlatAngle; }
 
-  /// Newton from a pair next to the best one only finds the best one again: it runs where the pair's nearest
-  /// hull points are a few node sizes from the best points (another basin), which, as the nodes shrink, every
-  /// pair holding a nearer extremal pair eventually is.
-  bool awayFromBest(const OpenPair& p) const {
-    const double reach = 2 * (p.a->ball.radius + p.b->ball.radius);
-    return !holdsBest(*p.a, *p.b) && ((p.wA - best_.pA).norm() > reach || (p.wB - best_.pB).norm() > reach);
+  /// Newton from a pair next to where Newton already ended in the same two patches only finds that end again:
+  /// it runs where the pair's nearest hull points are a few node sizes from every such end (another basin), or
+  /// in two patches where it never ran (the same minimum across a patch seam: its end there lets the seam's
+  /// side be certified too).
+  bool nearNewtonEnd(const OpenPair& p) const {
+    const Node& na = *p.a;
+    const Node& nb = *p.b;
+    const double reach = 2 * (na.ball.radius + nb.ball.radius);
+    for (const NewtonEnd& e : ends_)
+      if (e.patchA == na.patch && e.patchB == nb.patch &&
+          ((e.pA - p.wA).norm() <= reach && (e.pB - p.wB).norm() <= reach))
+        return true;
+    return false;
   }
 
-  /// The best pair's parameters lie in both nodes: Newton from them already ran.
-  bool holdsBest(const Node& na, const Node& nb) const {
-    const Eigen::Vector4d& x = best_.x;
-    return best_.patchA == na.patch && best_.patchB == nb.patch && x[0] >= na.s0 && x[0] <= na.s1 &&
-           x[1] >= na.t0 && x[1] <= na.t1 && x[2] >= nb.s0 && x[2] <= nb.s1 && x[3] >= nb.t0 && x[3] <= nb.t1;
+  /// The parameters of the node's control point nearest p (its Greville point, roughly where p lies).
+  static Eigen::Vector2d nearestControlParameters(const Node& n, const Eigen::Vector3d& p) {
+    const int du = n.net.degreeU, dv = n.net.degreeV;
+    double nearest = std::numeric_limits<double>::infinity();
+    Eigen::Vector2d st(0.5 * (n.s0 + n.s1), 0.5 * (n.t0 + n.t1));
+    for (int i = 0; i <= du; ++i)
+      for (int j = 0; j <= dv; ++j)
+        if (const double d = (n.net.point(i, j) - p).squaredNorm(); d < nearest) {
+          nearest = d;
+          st = {n.s0 + (n.s1 - n.s0) * i / std::max(du, 1), n.t0 + (n.t1 - n.t0) * j / std::max(dv, 1)};
+        }
+    return st;
+  }
+
+  /// A near-optimal upper bound before the search descends: Newton from the root pairs with the lowest bounds,
+  /// started where their control hulls come closest.
+  void seedFromLowestPairs() {
+    std::vector<OpenPair> lowest;
+    for (int k = 0; k < kSeedPairs && !open_.empty(); ++k) {
+      lowest.push_back(open_.top());
+      open_.pop();
+    }
+    for (const OpenPair& p : lowest) {
+      const Eigen::Vector2d sa = nearestControlParameters(*p.a, p.wA);
+      const Eigen::Vector2d sb = nearestControlParameters(*p.b, R_BA_ * (p.wB - X_AB_.translation()));
+      polish(p.a->patch, p.b->patch, Eigen::Vector4d(sa[0], sa[1], sb[0], sb[1]));
+      open_.push(p);
+    }
   }
 
   void polish(int patchA, int patchB, const Eigen::Vector4d& x0) {
     const nurbs::PairHit h = nurbs::polishPair(a_.patches()[static_cast<std::size_t>(patchA)],
                                                b_.patches()[static_cast<std::size_t>(patchB)], X_AB_, x0);
     iterations_ += h.evaluations;
+    if (std::none_of(ends_.begin(), ends_.end(), [&](const NewtonEnd& e) {
+          return e.patchA == patchA && e.patchB == patchB && (e.x - h.x).cwiseAbs().maxCoeff() <= kSameEnd;
+        }))
+      ends_.push_back({patchA, patchB, h.x, h.pA, h.pB});
     if (h.value < best_.value) {
       static_cast<nurbs::PairHit&>(best_) = h;
       best_.patchA = patchA;
@@ -148,7 +250,16 @@ class PairSearch {
     return c;
   }
 
-  void visit(const Node* na, const Node* nb) {
+  /// min over B's hull of n·b − max over A's hull of n·a: a lower bound of the hulls' distance for unit n.
+  double hullGap(const Eigen::Vector3d& n) const {
+    double highA = -std::numeric_limits<double>::infinity(), lowB = -highA;
+    for (const Eigen::Vector3d& p : hullA_) highA = std::max(highA, n.dot(p));
+    for (const Eigen::Vector3d& p : hullB_) lowB = std::min(lowB, n.dot(p));
+    return lowB - highA;
+  }
+
+  /// hint: a direction from A toward B along which the pair is likely separated (the parent's), or zero.
+  void visit(const Node* na, const Node* nb, const Eigen::Vector3d& hint = Eigen::Vector3d::Zero()) {
     const Eigen::Vector3d cb = X_AB_ * nb->ball.center;
     // Rounding of the subdivided nets: the same 256 ulps the nodes' balls are widened by.
     const double eps = 256 * std::numeric_limits<double>::epsilon();
@@ -159,6 +270,7 @@ class PairSearch {
       lowerOfPruned_ = std::min(lowerOfPruned_, byBalls);
       return;
     }
+    if (settledByRegion(*na, *nb)) return;
     // Every segment from A's ball to B's ball points into `towards`; an extremal pair needs one of them
     // normal to both surfaces (or orthogonal to the edges they lie on).
     const nurbs::Cone towards = nurbs::coneTowards(cb, na->ball.center, na->ball.radius + nb->ball.radius);
@@ -166,6 +278,18 @@ class PairSearch {
       return;
     nurbs::controlPoints(*na, hullA_);
     nurbs::controlPoints(*nb, X_AB_, hullB_);
+    // The hulls' gap along one direction is a proved bound too: along the parent pair's closest-point direction
+    // (or between the balls' centres) and along the best pair's, it often prunes the pair without running GJK.
+    for (const Eigen::Vector3d& along : {hint.squaredNorm() > 0 ? hint : Eigen::Vector3d(cb - na->ball.center),
+                                         Eigen::Vector3d(best_.pB - best_.pA)}) {
+      const double n = along.norm();
+      if (!(n > 0)) continue;
+      const double byAxis = hullGap(along / n) - margin;
+      if (byAxis >= best_.value - 0.5 * tolerance_) {
+        lowerOfPruned_ = std::min(lowerOfPruned_, byAxis);
+        return;
+      }
+    }
     // Overlapping hulls prove nothing about surfaces (at distance >= 0): their depth (EPA) is not worth
     // measuring; the separating-axis bound GJK leaves (negative) still orders the deeper overlaps first.
     const ConvexDistance c =
@@ -194,6 +318,8 @@ class PairSearch {
   double lowerOfPruned_ = std::numeric_limits<double>::infinity();  // pairs dropped by their bound
   int iterations_ = 0;
   std::vector<Eigen::Vector3d> hullA_, hullB_;
+  std::vector<NewtonEnd> ends_;
+  std::vector<ConvexRegion> regions_;
   std::vector<std::unique_ptr<Node>> arena_;
   std::priority_queue<OpenPair, std::vector<OpenPair>, std::greater<OpenPair>> open_;
 };
