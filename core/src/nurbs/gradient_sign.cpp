@@ -51,14 +51,26 @@ int signOver(const std::vector<double>& g, int cols, int k0, int k1, int l0, int
   return sign;
 }
 
-/// The node's net row (an s edge) or column (a t edge) `line` lies within `negligible` of its first point: a
-/// collapsed patch edge (a pole), every point of which is within that of the corner the search evaluates.
-bool collapsed(const PatchNode& n, bool sEdge, int line, double negligible) {
+/// The largest distance of the points of the node's net row (an s edge) or column (a t edge) `line` from its
+/// first point.
+double edgeSpread(const PatchNode& n, bool sEdge, int line) {
   const int count = sEdge ? n.net.degreeV : n.net.degreeU;
   const Eigen::Vector3d first = sEdge ? n.net.point(line, 0) : n.net.point(0, line);
+  double spread = 0;
   for (int k = 1; k <= count; ++k)
-    if (((sEdge ? n.net.point(line, k) : n.net.point(k, line)) - first).norm() > negligible) return false;
-  return true;
+    spread = std::max(spread, ((sEdge ? n.net.point(line, k) : n.net.point(k, line)) - first).norm());
+  return spread;
+}
+
+/// The line lies within `negligible` of its first point: a collapsed patch edge (a pole), every point of which
+/// is within that of the corner the search evaluates.
+bool collapsed(const PatchNode& n, bool sEdge, int line, double negligible) {
+  return edgeSpread(n, sEdge, line) <= negligible;
+}
+
+/// +1 or −1 when every value lies beyond `margin` with that sign (given their least and greatest), else 0.
+int signOfAll(double least, double greatest, double margin) {
+  return least > margin ? 1 : (greatest < -margin ? -1 : 0);
 }
 
 /// The sign of a numerator (grid of degree (a, b), `cols` = b + 1) over the node away from its collapsed edges
@@ -107,14 +119,19 @@ int signAwayFromPoles(const std::vector<double>& g, int a, int b, const bool pol
 /// component along the edge never zero, or the other pointing out of the patch), collapsed edges aside (a
 /// pole: every point there is within `negligible` of the corner the search evaluates). Without the strip rule
 /// every piece at a pole would fail (S_s vanishes along it) and be split down to the tolerance.
-bool noMinimum(const GradientForm& F, const std::vector<double>& u, const std::vector<double>& v, const PatchNode& n,
-               double margin, double negligible) {
+/// `range` holds the least and greatest of u and of v (the common case, no pole, needs no other pass).
+bool noMinimum(const GradientForm& F, const std::vector<double>& u, const std::vector<double>& v, const double range[4],
+               const PatchNode& n, double margin, double negligible) {
   const bool s0 = n.s0 == 0, s1 = n.s1 == 1, t0 = n.t0 == 0, t1 = n.t1 == 1;
-  const bool pole[4] = {s0 && collapsed(n, true, 0, negligible), s1 && collapsed(n, true, n.net.degreeU, negligible),
-                        t0 && collapsed(n, false, 0, negligible), t1 && collapsed(n, false, n.net.degreeV, negligible)};
-  if (signAwayFromPoles(u, F.su, F.tu, pole, margin, F.speedS, F.speedT, negligible) == 0 &&
-      signAwayFromPoles(v, F.sv, F.tv, pole, margin, F.speedS, F.speedT, negligible) == 0)
+  const bool pole[4] = {s0 && F.edgeSpread[0] <= negligible, s1 && F.edgeSpread[1] <= negligible,
+                        t0 && F.edgeSpread[2] <= negligible, t1 && F.edgeSpread[3] <= negligible};
+  if (pole[0] || pole[1] || pole[2] || pole[3]) {
+    if (signAwayFromPoles(u, F.su, F.tu, pole, margin, F.speedS, F.speedT, negligible) == 0 &&
+        signAwayFromPoles(v, F.sv, F.tv, pole, margin, F.speedS, F.speedT, negligible) == 0)
+      return false;
+  } else if (signOfAll(range[0], range[1], margin) == 0 && signOfAll(range[2], range[3], margin) == 0) {
     return false;
+  }
   const int cu = F.tu + 1, cv = F.tv + 1;
   // Edge s = 0: a minimum there has ∂/∂t = 0 and ∂/∂s >= 0; edge s = 1: ∂/∂s <= 0. Likewise for t.
   if (s0 && !pole[0] && signOver(v, cv, 0, 0, 0, F.tv, margin) == 0 && signOver(u, cu, 0, 0, 0, F.tu, margin) >= 0)
@@ -185,6 +202,10 @@ std::shared_ptr<const GradientForm> makeForm(const PatchNode& n) {
   F->sizeQ = wmax * dmax;
   F->errP = wmax * reach * deltaD + deltaX * (dmax + deltaD) + rounding * F->sizeP;
   F->errQ = wmax * deltaD + kNetUlps * kEps * F->sizeQ + rounding * F->sizeQ;
+  F->edgeSpread[0] = edgeSpread(n, true, 0);
+  F->edgeSpread[1] = edgeSpread(n, true, p);
+  F->edgeSpread[2] = edgeSpread(n, false, 0);
+  F->edgeSpread[3] = edgeSpread(n, false, q);
   return F;
 }
 
@@ -203,26 +224,39 @@ const GradientForm& gradientForm(const PatchNode& n) {
   return *n.gradient;
 }
 
+/// The coefficients c_k = p_k − r·q_k into out, with their least and greatest.
+void combine(const std::vector<double>& p, const Eigen::Vector3d& r, const std::vector<Eigen::Vector3d>& q,
+             std::vector<double>& out, double& least, double& greatest) {
+  out.resize(q.size());
+  least = std::numeric_limits<double>::infinity();
+  greatest = -least;
+  for (std::size_t k = 0; k < q.size(); ++k) {
+    const double c = (p.empty() ? 0.0 : p[k]) - r.dot(q[k]);
+    out[k] = c;
+    least = std::min(least, c);
+    greatest = std::max(greatest, c);
+  }
+}
+
 bool pointHoldsNoMinimum(const PatchNode& n, const Eigen::Vector3d& q, GradientScratch& g, double negligible) {
   const GradientForm& F = gradientForm(n);
   const Eigen::Vector3d r = q - F.centre;
-  g.u.resize(F.pu.size());
-  g.v.resize(F.pv.size());
-  for (std::size_t k = 0; k < F.pu.size(); ++k) g.u[k] = F.pu[k] - r.dot(F.qu[k]);
-  for (std::size_t k = 0; k < F.pv.size(); ++k) g.v[k] = F.pv[k] - r.dot(F.qv[k]);
+  double range[4];
+  combine(F.pu, r, F.qu, g.u, range[0], range[1]);
+  combine(F.pv, r, F.qv, g.v, range[2], range[3]);
   // r itself is rounded by an ulp of the larger of q and the centre.
   const double slack = 2 * kEps * (q.cwiseAbs().maxCoeff() + F.centre.cwiseAbs().maxCoeff()) * std::sqrt(3.0);
   const double margin = F.errP + r.norm() * F.errQ + slack * F.sizeQ + 8 * kEps * (F.sizeP + r.norm() * F.sizeQ);
-  return noMinimum(F, g.u, g.v, n, margin, negligible);
+  return noMinimum(F, g.u, g.v, range, n, margin, negligible);
 }
 
 bool supportHoldsNoMinimum(const PatchNode& n, const Eigen::Vector3d& d, GradientScratch& g, double negligible) {
   const GradientForm& F = gradientForm(n);
-  g.u.resize(F.qu.size());
-  g.v.resize(F.qv.size());
-  for (std::size_t k = 0; k < F.qu.size(); ++k) g.u[k] = -d.dot(F.qu[k]);
-  for (std::size_t k = 0; k < F.qv.size(); ++k) g.v[k] = -d.dot(F.qv[k]);
-  return noMinimum(F, g.u, g.v, n, F.errQ + 8 * kEps * F.sizeQ, negligible);
+  double range[4];
+  const std::vector<double> none;
+  combine(none, d, F.qu, g.u, range[0], range[1]);
+  combine(none, d, F.qv, g.v, range[2], range[3]);
+  return noMinimum(F, g.u, g.v, range, n, F.errQ + 8 * kEps * F.sizeQ, negligible);
 }
 
 }  // namespace unidist::nurbs

@@ -30,6 +30,9 @@ struct GradientForm {
   // exact subpatch's (the net's rounding and this computation's).
   double sizeP = 0, sizeQ = 0, errP = 0, errQ = 0;
   double speedS = 0, speedT = 0;  // bounds on |S_s| and |S_t| over the piece (its own parameters)
+  // Per net edge (s = 0, s = 1, t = 0, t = 1): the largest distance of its control points from its first one,
+  // so that a collapsed edge (a pole) is recognised without touching the net per query.
+  double edgeSpread[4] = {0, 0, 0, 0};
 };
 
 /// The point of a patch edge collapsed to within `negligible` (a pole) that the node touches, or null.

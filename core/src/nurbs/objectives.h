@@ -45,6 +45,33 @@ class PointObjective final : public Objective {
   bool provesNoMinimum(const PatchNode& n, double negligible) const override {
     return conesProveNoMinimum(n, criticalDirections(n.ball)) || pointHoldsNoMinimum(n, q_, gradient_, negligible);
   }
+  void startRanks(const StartSet& start, double* out) const override {
+    const double* x = start.px.data();
+    const double* y = start.py.data();
+    const double* z = start.pz.data();
+    const double qx = q_.x(), qy = q_.y(), qz = q_.z();
+    for (std::size_t k = 0; k < start.px.size(); ++k) {
+      const double dx = x[k] - qx, dy = y[k] - qy, dz = z[k] - qz;
+      out[k] = dx * dx + dy * dy + dz * dz;
+    }
+  }
+  // lowerBound() of each node, the same expression, where the squared distance says it may be below `below`.
+  void startBounds(const StartSet& start, double below, double* out) const override {
+    const double* x = start.cx.data();
+    const double* y = start.cy.data();
+    const double* z = start.cz.data();
+    const double* r = start.radius.data();
+    const double qx = q_.x(), qy = q_.y(), qz = q_.z();
+    for (std::size_t k = 0; k < start.cx.size(); ++k) {
+      const double dx = qx - x[k], dy = qy - y[k], dz = qz - z[k], reach = below + r[k];
+      out[k] = dx * dx + dy * dy + dz * dz < 1.0000001 * reach * reach ? 0.0 : std::numeric_limits<double>::infinity();
+    }
+    for (std::size_t k = 0; k < start.cx.size(); ++k)
+      if (out[k] == 0) {
+        const double dx = qx - x[k], dy = qy - y[k], dz = qz - z[k];
+        out[k] = std::max(0.0, std::sqrt(dx * dx + dy * dy + dz * dz) - r[k]);
+      }
+  }
 
  private:
   Eigen::Vector3d q_;
@@ -66,7 +93,7 @@ class SupportObjective final : public Objective {
     for (const Eigen::Vector4d& h : n.net.net) most = std::max(most, d_.dot(h.head<3>() / h[3]));
     return -most - 256 * std::numeric_limits<double>::epsilon() * (n.ball.center.cwiseAbs().maxCoeff() + n.ball.radius);
   }
-  Cone criticalDirections(const BoundingSphere&) const override { return Cone{d_.normalized(), 0.0, false}; }
+  Cone criticalDirections(const BoundingSphere&) const override { return makeCone(d_.normalized(), 0.0); }
   void derivatives(const SurfaceDerivatives& s, Eigen::Vector2d& g, Eigen::Matrix2d& H) const override {
     g << -d_.dot(s.du), -d_.dot(s.dv);
     H << -d_.dot(s.duu), -d_.dot(s.duv), -d_.dot(s.duv), -d_.dot(s.dvv);

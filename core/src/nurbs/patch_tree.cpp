@@ -12,6 +12,9 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 // Slack added to every cone angle: the cones are computed in floating point from rounded nets.
 constexpr double kAngleSlack = 1e-9;
+// What the cosine tests allow for: a slack a cone's cosine and sine left out (coneTowards) moves a cosine, a
+// sine or a product of them by at most its size, plus rounding.
+constexpr double kCosineSlack = 2 * kAngleSlack;
 
 double angleBetween(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
   // atan2 of |a x b| and a·b stays accurate near 0 and π, unlike acos.
@@ -117,7 +120,7 @@ Cone coneOfVectors(const std::vector<Eigen::Vector3d>& vectors) {
   if (!(leastCos > 0)) return Cone{};  // a vector at π/2 or beyond: the cone would not be convex
   const double angle = angleBetween(axis, *widest) + kAngleSlack;
   if (angle >= 0.5 * kPi) return Cone{};
-  return Cone{axis, angle, false};
+  return makeCone(axis, angle);
 }
 
 Cone crossCone(const Cone& cu, const Cone& cv) {
@@ -128,25 +131,47 @@ Cone crossCone(const Cone& cu, const Cone& cv) {
   const double s = std::sqrt(su * su + 2 * su * sv * std::abs(std::cos(beta)) + sv * sv) / std::sin(beta);
   if (!(s < 1)) return Cone{};
   const Eigen::Vector3d axis = cu.axis.cross(cv.axis);
-  return Cone{axis.normalized(), std::asin(s) + kAngleSlack, false};
+  return makeCone(axis.normalized(), std::asin(s) + kAngleSlack);
+}
+
+Cone makeCone(const Eigen::Vector3d& axis, double angle) {
+  Cone c;
+  c.axis = axis;
+  c.angle = angle;
+  c.all = false;
+  c.cosine = std::cos(angle);
+  c.sine = std::sin(angle);
+  return c;
 }
 
 Cone coneTowards(const Eigen::Vector3d& q, const Eigen::Vector3d& c, double r) {
   const Eigen::Vector3d d = q - c;
   const double n = d.norm();
   if (!(n > r * (1 + 1e-12))) return Cone{};
-  return Cone{d / n, std::asin(std::min(1.0, r / n)) + kAngleSlack, false};
+  Cone out;
+  out.axis = d / n;
+  out.all = false;
+  out.sine = std::min(1.0, r / n);
+  out.cosine = std::sqrt(std::max(0.0, 1 - out.sine * out.sine));  // of the angle without its slack
+  out.angle = std::asin(out.sine) + kAngleSlack;
+  return out;
 }
 
+// With S the sum of the two angles and φ the angle between the axes: some direction of a within b or −b when
+// min(φ, π − φ) <= S, i.e. |cos φ| >= cos S (cos S <= 0 when S >= π/2, and then it always holds).
 bool meetsEitherWay(const Cone& a, const Cone& b) {
   if (a.all || b.all) return true;
-  const double phi = angleBetween(a.axis, b.axis), sum = a.angle + b.angle;
-  return phi <= sum || kPi - phi <= sum;
+  const double cosSum = a.cosine * b.cosine - a.sine * b.sine;
+  return std::abs(a.axis.dot(b.axis)) >= cosSum - kCosineSlack;
 }
 
+// Some pair orthogonal when |φ − π/2| <= S: always when S >= π/2, else when |cos φ| <= sin S.
 bool canBeOrthogonal(const Cone& a, const Cone& b) {
   if (a.all || b.all) return true;
-  return std::abs(angleBetween(a.axis, b.axis) - 0.5 * kPi) <= a.angle + b.angle;
+  const double cosSum = a.cosine * b.cosine - a.sine * b.sine;
+  if (cosSum <= kCosineSlack) return true;
+  const double sinSum = a.sine * b.cosine + a.cosine * b.sine;
+  return std::abs(a.axis.dot(b.axis)) <= sinSum + kCosineSlack;
 }
 
 bool mayHoldCritical(const PatchNode& n, const Cone& towards, bool corners) {

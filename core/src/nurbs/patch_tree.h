@@ -15,13 +15,20 @@
 namespace unidist::nurbs {
 
 struct GradientForm;
+struct StartSet;
 
-/// A cone of directions {axis, half-angle}; `all` means every direction (no bound).
+/// A cone of directions {axis, half-angle}; `all` means every direction (no bound). The cosine and sine of the
+/// angle are kept so that the tests below compare cosines (no trigonometry per test); they may leave out the
+/// angle's rounding slack, which the tests allow for. Make cones with makeCone.
 struct Cone {
   Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();
   double angle = 0;
   bool all = true;
+  double cosine = 1, sine = 0;
 };
+
+/// The cone {axis (unit), angle}.
+Cone makeCone(const Eigen::Vector3d& axis, double angle);
 
 /// Smallest-ish cone containing every non-zero vector given (incremental growth); all when some angle reaches π/2
 /// (a wider cone would not contain the non-negative combinations of its vectors).
@@ -75,6 +82,8 @@ void controlPoints(const PatchNode& n, const Eigen::Isometry3d& X, std::vector<E
 struct PatchForest {
   std::vector<std::unique_ptr<PatchNode>> roots;
   mutable std::atomic<std::size_t> nodes{0}, bytes{0};
+  mutable std::once_flag startOnce;  // the search's starting cut (start_set.h), made on first use
+  mutable std::shared_ptr<const StartSet> start;
 
   explicit PatchForest(const std::vector<RationalBezierPatch>& patches);
   /// The four children of n (quadrants in u-major order). Cached ones are built once; deeper ones go to arena.
