@@ -68,10 +68,6 @@ bool collapsed(const PatchNode& n, bool sEdge, int line, double negligible) {
   return edgeSpread(n, sEdge, line) <= negligible;
 }
 
-/// +1 or −1 when every value lies beyond `margin` with that sign (given their least and greatest), else 0.
-int signOfAll(double least, double greatest, double margin) {
-  return least > margin ? 1 : (greatest < -margin ? -1 : 0);
-}
 
 /// The sign of a numerator (grid of degree (a, b), `cols` = b + 1) over the node away from its collapsed edges
 /// (pole[0..3]: s = 0, s = 1, t = 0, t = 1): +1 or −1 when every coefficient off those edges' lines has it
@@ -119,8 +115,8 @@ int signAwayFromPoles(const std::vector<double>& g, int a, int b, const bool pol
 /// component along the edge never zero, or the other pointing out of the patch), collapsed edges aside (a
 /// pole: every point there is within `negligible` of the corner the search evaluates). Without the strip rule
 /// every piece at a pole would fail (S_s vanishes along it) and be split down to the tolerance.
-/// `range` holds the least and greatest of u and of v (the common case, no pole, needs no other pass).
-bool noMinimum(const GradientForm& F, const std::vector<double>& u, const std::vector<double>& v, const double range[4],
+/// `signs` are those of all of u and all of v (signOfAll; the common case, no pole, needs no other pass).
+bool noMinimum(const GradientForm& F, const std::vector<double>& u, const std::vector<double>& v, const int signs[2],
                const PatchNode& n, double margin, double negligible) {
   const bool s0 = n.s0 == 0, s1 = n.s1 == 1, t0 = n.t0 == 0, t1 = n.t1 == 1;
   const bool pole[4] = {s0 && F.edgeSpread[0] <= negligible, s1 && F.edgeSpread[1] <= negligible,
@@ -129,7 +125,7 @@ bool noMinimum(const GradientForm& F, const std::vector<double>& u, const std::v
     if (signAwayFromPoles(u, F.su, F.tu, pole, margin, F.speedS, F.speedT, negligible) == 0 &&
         signAwayFromPoles(v, F.sv, F.tv, pole, margin, F.speedS, F.speedT, negligible) == 0)
       return false;
-  } else if (signOfAll(range[0], range[1], margin) == 0 && signOfAll(range[2], range[3], margin) == 0) {
+  } else if (signs[0] == 0 && signs[1] == 0) {
     return false;
   }
   const int cu = F.tu + 1, cv = F.tv + 1;
@@ -184,9 +180,14 @@ std::shared_ptr<const GradientForm> makeForm(const PatchNode& n) {
   const auto scaled = [](double w, const Eigen::Vector3d& d) -> Eigen::Vector3d { return w * d; };
   const Eigen::Vector3d zero = Eigen::Vector3d::Zero();
   product(p, q, X, 2 * p - 1, 2 * q, du, dot, 0.0, F->pu);
-  product(p, q, W, 2 * p - 1, 2 * q, du, scaled, zero, F->qu);
+  std::vector<Eigen::Vector3d> qu, qv;
+  product(p, q, W, 2 * p - 1, 2 * q, du, scaled, zero, qu);
   product(p, q, X, 2 * p, 2 * q - 1, dv, dot, 0.0, F->pv);
-  product(p, q, W, 2 * p, 2 * q - 1, dv, scaled, zero, F->qv);
+  product(p, q, W, 2 * p, 2 * q - 1, dv, scaled, zero, qv);
+  for (int c = 0; c < 3; ++c) {
+    for (const Eigen::Vector3d& x : qu) F->qu[static_cast<std::size_t>(c)].push_back(x[c]);
+    for (const Eigen::Vector3d& x : qv) F->qv[static_cast<std::size_t>(c)].push_back(x[c]);
+  }
   F->su = 3 * p - 1;
   F->tu = 3 * q;
   F->sv = 3 * p;
@@ -224,39 +225,52 @@ const GradientForm& gradientForm(const PatchNode& n) {
   return *n.gradient;
 }
 
-/// The coefficients c_k = p_k − r·q_k into out, with their least and greatest.
-void combine(const std::vector<double>& p, const Eigen::Vector3d& r, const std::vector<Eigen::Vector3d>& q,
-             std::vector<double>& out, double& least, double& greatest) {
-  out.resize(q.size());
-  least = std::numeric_limits<double>::infinity();
-  greatest = -least;
-  for (std::size_t k = 0; k < q.size(); ++k) {
-    const double c = (p.empty() ? 0.0 : p[k]) - r.dot(q[k]);
-    out[k] = c;
-    least = std::min(least, c);
-    greatest = std::max(greatest, c);
+/// The coefficients c_k = p_k − r·q_k into out (p empty: 0 − r·q_k); +1 or −1 when every one lies beyond
+/// `margin` with that sign, else 0.
+int combine(const std::vector<double>& p, const Eigen::Vector3d& r, const std::array<std::vector<double>, 3>& q,
+            double margin, std::vector<double>& out) {
+  const std::size_t count = q[0].size();
+  out.resize(count);
+  const double *x = q[0].data(), *y = q[1].data(), *z = q[2].data();
+  double* c = out.data();
+  const double rx = r.x(), ry = r.y(), rz = r.z();
+  if (p.empty()) {
+    for (std::size_t k = 0; k < count; ++k) c[k] = -(rx * x[k] + ry * y[k] + rz * z[k]);
+  } else {
+    const double* pk = p.data();
+    for (std::size_t k = 0; k < count; ++k) c[k] = pk[k] - (rx * x[k] + ry * y[k] + rz * z[k]);
   }
+  std::size_t above = 0, below = 0;
+  for (std::size_t k = 0; k < count; ++k) {
+    above += c[k] > margin;
+    below += c[k] < -margin;
+  }
+  return above == count ? 1 : (below == count ? -1 : 0);
 }
+
+/// No patch edge in the node: only interior minima, which need both components zero.
+bool interior(const PatchNode& n) { return n.s0 > 0 && n.s1 < 1 && n.t0 > 0 && n.t1 < 1; }
 
 bool pointHoldsNoMinimum(const PatchNode& n, const Eigen::Vector3d& q, GradientScratch& g, double negligible) {
   const GradientForm& F = gradientForm(n);
   const Eigen::Vector3d r = q - F.centre;
-  double range[4];
-  combine(F.pu, r, F.qu, g.u, range[0], range[1]);
-  combine(F.pv, r, F.qv, g.v, range[2], range[3]);
   // r itself is rounded by an ulp of the larger of q and the centre.
   const double slack = 2 * kEps * (q.cwiseAbs().maxCoeff() + F.centre.cwiseAbs().maxCoeff()) * std::sqrt(3.0);
   const double margin = F.errP + r.norm() * F.errQ + slack * F.sizeQ + 8 * kEps * (F.sizeP + r.norm() * F.sizeQ);
-  return noMinimum(F, g.u, g.v, range, n, margin, negligible);
+  int signs[2];
+  signs[0] = combine(F.pu, r, F.qu, margin, g.u);
+  if (signs[0] != 0 && interior(n)) return true;  // ∂/∂s never zero (the usual proof: v is not needed)
+  signs[1] = combine(F.pv, r, F.qv, margin, g.v);
+  if (interior(n)) return signs[1] != 0;
+  return noMinimum(F, g.u, g.v, signs, n, margin, negligible);
 }
 
 bool supportHoldsNoMinimum(const PatchNode& n, const Eigen::Vector3d& d, GradientScratch& g, double negligible) {
   const GradientForm& F = gradientForm(n);
-  double range[4];
+  const double margin = F.errQ + 8 * kEps * F.sizeQ;
   const std::vector<double> none;
-  combine(none, d, F.qu, g.u, range[0], range[1]);
-  combine(none, d, F.qv, g.v, range[2], range[3]);
-  return noMinimum(F, g.u, g.v, range, n, F.errQ + 8 * kEps * F.sizeQ, negligible);
+  const int signs[2] = {combine(none, d, F.qu, margin, g.u), combine(none, d, F.qv, margin, g.v)};
+  return noMinimum(F, g.u, g.v, signs, n, margin, negligible);
 }
 
 }  // namespace unidist::nurbs

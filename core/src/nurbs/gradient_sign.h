@@ -15,6 +15,7 @@
 
 #include "nurbs/patch_tree.h"
 
+#include <array>
 #include <vector>
 
 namespace unidist::nurbs {
@@ -24,8 +25,8 @@ namespace unidist::nurbs {
 struct GradientForm {
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();
   int su = 0, tu = 0, sv = 0, tv = 0;  // degrees (s, t) of the ∂/∂s and ∂/∂t grids
-  std::vector<double> pu, pv;           // X'·D
-  std::vector<Eigen::Vector3d> qu, qv;  // W D
+  std::vector<double> pu, pv;            // X'·D
+  std::array<std::vector<double>, 3> qu, qv;  // W D, coordinate by coordinate (a query's loop is vectorised)
   // Every |coefficient| is at most sizeP (X'·D) or sizeQ (W D); errP and errQ bound their distance from the
   // exact subpatch's (the net's rounding and this computation's).
   double sizeP = 0, sizeQ = 0, errP = 0, errQ = 0;
