@@ -27,7 +27,7 @@ class PointObjective final : public Objective {
   double rank(const Eigen::Vector3d& p) const override { return (p - q_).squaredNorm(); }
   double rankOf(double value) const override { return value < 0 ? -1.0 : value * value; }
   double lowerBound(const PatchNode& n) const override {
-    return std::max(0.0, (q_ - n.ball.center).norm() - n.ball.radius);
+    return std::max((q_ - n.ball.center).norm() - n.ball.radius, boxDistance(n, q_));
   }
   double tightLowerBound(const PatchNode& n) const override {
     return std::max(lowerBound(n), bernsteinDistanceBound(n.net, q_, scratch_));
@@ -55,7 +55,7 @@ class PointObjective final : public Objective {
       out[k] = dx * dx + dy * dy + dz * dz;
     }
   }
-  // lowerBound() of each node, the same expression, where the squared distance says it may be below `below`.
+  // lowerBound() of each node where its ball says it may be below `below`.
   void startBounds(const StartSet& start, double below, double* out) const override {
     const double* x = start.cx.data();
     const double* y = start.cy.data();
@@ -67,10 +67,7 @@ class PointObjective final : public Objective {
       out[k] = dx * dx + dy * dy + dz * dz < 1.0000001 * reach * reach ? 0.0 : std::numeric_limits<double>::infinity();
     }
     for (std::size_t k = 0; k < start.cx.size(); ++k)
-      if (out[k] == 0) {
-        const double dx = qx - x[k], dy = qy - y[k], dz = qz - z[k];
-        out[k] = std::max(0.0, std::sqrt(dx * dx + dy * dy + dz * dz) - r[k]);
-      }
+      if (out[k] == 0) out[k] = lowerBound(*start.nodes[k]);
   }
 
  private:
