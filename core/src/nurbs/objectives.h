@@ -10,6 +10,17 @@
 
 namespace unidist::nurbs {
 
+/// Buffers of the Bernstein bound and the certificate, one set per thread (neither calls back into a search), so
+/// that a query allocates nothing for them once its thread is warm.
+inline BernsteinScratch& bernsteinScratch() {
+  thread_local BernsteinScratch s;
+  return s;
+}
+inline GradientScratch& gradientScratch() {
+  thread_local GradientScratch s;
+  return s;
+}
+
 /// The cheap first try of provesNoMinimum: the tangent cones. Su never orthogonal to the objective's direction
 /// rules out interior critical points and those on the edges t = const, likewise Sv (Su and Sv vanish only on
 /// collapsed edges, whose points are a corner's).
@@ -30,7 +41,7 @@ class PointObjective final : public Objective {
     return std::max((q_ - n.ball.center).norm() - n.ball.radius, boxDistance(n, q_));
   }
   double tightLowerBound(const PatchNode& n) const override {
-    return std::max(lowerBound(n), bernsteinDistanceBound(n.net, q_, scratch_));
+    return std::max(lowerBound(n), bernsteinDistanceBound(n.net, q_, bernsteinScratch()));
   }
   Cone criticalDirections(const BoundingSphere& b) const override { return coneTowards(q_, b.center, b.radius); }
   void derivatives(const SurfaceDerivatives& d, Eigen::Vector2d& g, Eigen::Matrix2d& H) const override {
@@ -43,7 +54,7 @@ class PointObjective final : public Objective {
   // are polished too (otherwise a query on the surface would subdivide down to the tolerance).
   double leafScale(const BoundingSphere& b) const override { return std::max((q_ - b.center).norm(), floor_); }
   bool provesNoMinimum(const PatchNode& n, double negligible) const override {
-    return conesProveNoMinimum(n, criticalDirections(n.ball)) || pointHoldsNoMinimum(n, q_, gradient_, negligible);
+    return conesProveNoMinimum(n, criticalDirections(n.ball)) || pointHoldsNoMinimum(n, q_, gradientScratch(), negligible);
   }
   void startRanks(const StartSet& start, double* out) const override {
     const double* x = start.px.data();
@@ -73,8 +84,6 @@ class PointObjective final : public Objective {
  private:
   Eigen::Vector3d q_;
   double floor_;
-  mutable BernsteinScratch scratch_;  // one objective per query and thread
-  mutable GradientScratch gradient_;
 };
 
 /// −d·S: its minimiser is a support point in direction d.
@@ -97,13 +106,12 @@ class SupportObjective final : public Objective {
   }
   double leafScale(const BoundingSphere&) const override { return size_; }
   bool provesNoMinimum(const PatchNode& n, double negligible) const override {
-    return conesProveNoMinimum(n, criticalDirections(n.ball)) || supportHoldsNoMinimum(n, d_, gradient_, negligible);
+    return conesProveNoMinimum(n, criticalDirections(n.ball)) || supportHoldsNoMinimum(n, d_, gradientScratch(), negligible);
   }
 
  private:
   Eigen::Vector3d d_;
   double size_;
-  mutable GradientScratch gradient_;
 };
 
 }  // namespace unidist::nurbs

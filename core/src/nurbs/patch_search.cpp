@@ -4,7 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <queue>
+#include <functional>
+#include <memory>
 
 namespace unidist::nurbs {
 namespace {
@@ -21,6 +22,48 @@ struct Open {
   const PatchNode* node;
   int certSplits = 0;  // levels split since an ancestor failed its certificate (below)
   bool operator>(const Open& o) const { return lower > o.lower; }
+};
+
+/// The buffers of one search. Each thread keeps one set between its searches, so that a warm query allocates
+/// nothing here; a search that starts while the thread's set is in use gets a set of its own.
+struct Buffers {
+  std::vector<PatchHit> hits, polished;
+  std::vector<Open> open;  // a heap on `lower` (std::push_heap / pop_heap with greater: least on top)
+  std::vector<double> values;
+  std::vector<std::unique_ptr<PatchNode>> arena;  // nodes below the cached depth, freed after the search
+  bool busy = false;
+};
+
+class BorrowedBuffers {
+ public:
+  BorrowedBuffers() {
+    thread_local Buffers perThread;
+    if (perThread.busy) {
+      own_ = std::make_unique<Buffers>();
+      b_ = own_.get();
+    } else {
+      b_ = &perThread;
+    }
+    b_->busy = true;
+  }
+  ~BorrowedBuffers() {
+    b_->hits.clear();
+    b_->polished.clear();
+    b_->open.clear();
+    b_->arena.clear();
+    // An exhausted search leaves a large heap behind: not kept.
+    if (b_->open.capacity() > 4096) b_->open.shrink_to_fit();
+    if (b_->hits.capacity() > 4096) b_->hits.shrink_to_fit();
+    if (b_->arena.capacity() > 4096) b_->arena.shrink_to_fit();
+    b_->busy = false;
+  }
+  BorrowedBuffers(const BorrowedBuffers&) = delete;
+  BorrowedBuffers& operator=(const BorrowedBuffers&) = delete;
+  Buffers& operator*() const { return *b_; }
+
+ private:
+  Buffers* b_ = nullptr;
+  std::unique_ptr<Buffers> own_;
 };
 
 }  // namespace
@@ -108,7 +151,10 @@ SearchResult minimise(const PatchForest& forest, const std::vector<RationalBezie
                       double tolerance, double tieTolerance, int skip) {
   SearchResult out;
   out.best.value = std::numeric_limits<double>::infinity();
-  std::vector<PatchHit> hits, polished;
+  const BorrowedBuffers borrowed;
+  Buffers& buffers = *borrowed;
+  std::vector<PatchHit>& hits = buffers.hits;
+  std::vector<PatchHit>& polished = buffers.polished;
   double keep = std::numeric_limits<double>::infinity();  // rank below which a point ties with the best
   auto offer = [&](const PatchHit& h) {
     hits.push_back(h);
@@ -125,13 +171,18 @@ SearchResult minimise(const PatchForest& forest, const std::vector<RationalBezie
     }
   };
 
-  std::priority_queue<Open, std::vector<Open>, std::greater<Open>> open;
-  std::vector<std::unique_ptr<PatchNode>> arena;
+  std::vector<Open>& open = buffers.open;
+  const auto push = [&open](const Open& o) {
+    open.push_back(o);
+    std::push_heap(open.begin(), open.end(), std::greater<Open>());
+  };
+  std::vector<std::unique_ptr<PatchNode>>& arena = buffers.arena;
   // Seed: every point of the start grid is offered (patch corners among them), and Newton runs from the best,
   // so that the bound prunes from the start. Only a start: the search below proves or improves it.
   const StartSet& start = startSet(forest);
   const std::size_t samples = start.samples.size();
-  std::vector<double> values(std::max(samples, start.nodes.size()));
+  std::vector<double>& values = buffers.values;
+  values.resize(std::max(samples, start.nodes.size()));
   f.startRanks(start, values.data());
   if (skip >= 0)
     for (std::size_t k = 0; k < samples; ++k)
@@ -152,11 +203,12 @@ SearchResult minimise(const PatchForest& forest, const std::vector<RationalBezie
   }
   f.startBounds(start, out.best.value - tolerance, values.data());
   for (std::size_t k = 0; k < start.nodes.size(); ++k)
-    if (values[k] < out.best.value - tolerance && start.nodes[k]->patch != skip) open.push({values[k], start.nodes[k], 0});
+    if (values[k] < out.best.value - tolerance && start.nodes[k]->patch != skip) push({values[k], start.nodes[k], 0});
   while (!open.empty()) {
-    const Open top = open.top();
+    const Open top = open.front();
     if (top.lower >= out.best.value - tolerance) break;
-    open.pop();
+    std::pop_heap(open.begin(), open.end(), std::greater<Open>());
+    open.pop_back();
     const PatchNode& n = *top.node;
     if (++out.nodes > kNurbsSearchBudget) {
       out.exhausted = true;
@@ -209,7 +261,7 @@ SearchResult minimise(const PatchForest& forest, const std::vector<RationalBezie
     for (const PatchNode* c : forest.children(n, arena)) {
       offerCorners(*c);
       const double lb = f.lowerBound(*c);
-      if (lb < out.best.value - tolerance) open.push({lb, c, certSplits});
+      if (lb < out.best.value - tolerance) push({lb, c, certSplits});
     }
   }
   for (const PatchHit& h : hits)
