@@ -47,6 +47,56 @@ SurfaceDerivatives quotient(const Eigen::Vector4d& A, const Eigen::Vector4d& Au,
   return d;
 }
 
+/// The Bernstein basis of degree N at t with its first two derivatives, as nurbs::bernstein computes it (the
+/// same operations in the same order), for a degree known at compile time: the loops unroll.
+template <int N>
+void basisOfDegree(double t, double (&b0)[N + 1], double (&b1)[N + 1], double (&b2)[N + 1]) {
+  const double s = 1.0 - t;
+  double b[N + 1] = {}, lower1[N + 2] = {}, lower2[N + 3] = {};
+  b[0] = 1.0;
+  for (int m = 1; m <= N; ++m) {
+    if (m + 1 == N)
+      for (int j = 0; j < m; ++j) lower2[j + 2] = b[j];
+    if (m == N)
+      for (int j = 0; j < m; ++j) lower1[j + 1] = b[j];
+    b[m] = t * b[m - 1];
+    for (int i = m - 1; i > 0; --i) b[i] = t * b[i - 1] + s * b[i];
+    b[0] *= s;
+  }
+  const double d1 = N, d2 = N * (N - 1.0);
+  for (int i = 0; i <= N; ++i) {
+    b0[i] = b[i];
+    b1[i] = d1 * (lower1[i] - lower1[i + 1]);
+    b2[i] = d2 * (lower2[i] - 2 * lower2[i + 1] + lower2[i + 2]);
+  }
+}
+
+/// RationalBezierPatch::derivatives for degrees (P, Q) known at compile time (the Newton polish evaluates
+/// patches of degree <= 3 in nearly every query; the general loops cost it about twice as much).
+template <int P, int Q>
+SurfaceDerivatives derivativesOfDegree(const std::vector<Eigen::Vector4d>& net, double s, double t) {
+  double bu[3][P + 1], bv[3][Q + 1];
+  basisOfDegree<P>(s, bu[0], bu[1], bu[2]);
+  basisOfDegree<Q>(t, bv[0], bv[1], bv[2]);
+  Eigen::Vector4d A = Eigen::Vector4d::Zero(), Au = A, Av = A, Auu = A, Auv = A, Avv = A;
+  for (int i = 0; i <= P; ++i) {
+    Eigen::Vector4d row0 = Eigen::Vector4d::Zero(), row1 = row0, row2 = row0;
+    for (int j = 0; j <= Q; ++j) {
+      const Eigen::Vector4d& h = net[static_cast<std::size_t>(i * (Q + 1) + j)];
+      row0 += bv[0][j] * h;
+      row1 += bv[1][j] * h;
+      row2 += bv[2][j] * h;
+    }
+    A += bu[0][i] * row0;
+    Av += bu[0][i] * row1;
+    Avv += bu[0][i] * row2;
+    Au += bu[1][i] * row0;
+    Auv += bu[1][i] * row1;
+    Auu += bu[2][i] * row0;
+  }
+  return quotient(A, Au, Av, Auu, Auv, Avv);
+}
+
 }  // namespace
 
 NurbsSurface::NurbsSurface(int degreeU, int degreeV, std::vector<double> knotsU, std::vector<double> knotsV,
@@ -146,6 +196,18 @@ Eigen::Vector2d RationalBezierPatch::surfaceParam(double s, double t) const {
 }
 
 SurfaceDerivatives RationalBezierPatch::derivatives(double s, double t) const {
+  switch (degreeU <= 3 && degreeV <= 3 ? degreeU * 4 + degreeV : 0) {
+    case 1 * 4 + 1: return derivativesOfDegree<1, 1>(net, s, t);
+    case 1 * 4 + 2: return derivativesOfDegree<1, 2>(net, s, t);
+    case 1 * 4 + 3: return derivativesOfDegree<1, 3>(net, s, t);
+    case 2 * 4 + 1: return derivativesOfDegree<2, 1>(net, s, t);
+    case 2 * 4 + 2: return derivativesOfDegree<2, 2>(net, s, t);
+    case 2 * 4 + 3: return derivativesOfDegree<2, 3>(net, s, t);
+    case 3 * 4 + 1: return derivativesOfDegree<3, 1>(net, s, t);
+    case 3 * 4 + 2: return derivativesOfDegree<3, 2>(net, s, t);
+    case 3 * 4 + 3: return derivativesOfDegree<3, 3>(net, s, t);
+    default: break;
+  }
   std::array<std::array<double, 32>, 3> bu, bv;
   nurbs::bernstein(degreeU, s, bu);
   nurbs::bernstein(degreeV, t, bv);
