@@ -61,29 +61,44 @@ BasisRow basisWithDerivatives(const std::vector<double>& knots, int p, int span,
   return row;
 }
 
+namespace {
+
+/// Rows of Pascal's triangle up to 2 kMaxNurbsDegree (built once).
+const std::vector<std::vector<double>>& pascal() {
+  static const std::vector<std::vector<double>> rows = [] {
+    std::vector<std::vector<double>> t(64);
+    for (std::size_t m = 0; m < t.size(); ++m) {
+      t[m].assign(m + 1, 1.0);
+      for (std::size_t j = 1; j < m; ++j) t[m][j] = t[m - 1][j - 1] + t[m - 1][j];
+    }
+    return t;
+  }();
+  return rows;
+}
+
+}  // namespace
+
 void bernstein(int n, double t, std::array<std::array<double, 32>, 3>& out) {
-  // The basis of degree m from that of degree m − 1 (B_i^m = t B_{i−1}^{m−1} + (1−t) B_i^{m−1}), kept at
-  // degrees n − 2 and n − 1 (zero-padded) for B'' and B': a few flops per value, no table and no branch per
-  // value, which matters because the Newton polish spends most of its time here.
+  // Power form B_i^m = C(m,i) t^i (1−t)^(m−i) for m = n, n−1, n−2: a few multiplications per value, which is
+  // what the Newton polish spends most of its time on. B' and B'' from the lower degrees.
+  std::array<double, 33> tp, sp;
+  tp[0] = sp[0] = 1.0;
   const double s = 1.0 - t;
-  std::array<double, 33> b;
-  std::array<double, 35> lower1, lower2;  // B_j^{n−1} at lower1[j + 1], B_j^{n−2} at lower2[j + 2]
-  const auto un = static_cast<std::size_t>(n);
-  lower1[0] = lower1[un + 1] = 0;
-  lower2[0] = lower2[1] = lower2[un + 1] = lower2[un + 2] = 0;
-  b[0] = 1.0;
-  for (std::size_t m = 1; m <= un; ++m) {
-    if (m + 1 == un) std::copy(b.begin(), b.begin() + static_cast<std::ptrdiff_t>(m), lower2.begin() + 2);
-    if (m == un) std::copy(b.begin(), b.begin() + static_cast<std::ptrdiff_t>(m), lower1.begin() + 1);
-    b[m] = t * b[m - 1];
-    for (std::size_t i = m - 1; i > 0; --i) b[i] = t * b[i - 1] + s * b[i];
-    b[0] *= s;
+  for (std::size_t k = 1; k <= static_cast<std::size_t>(n); ++k) {
+    tp[k] = tp[k - 1] * t;
+    sp[k] = sp[k - 1] * s;
   }
-  const double d1 = n, d2 = n * (n - 1.0);
-  for (std::size_t i = 0; i <= un; ++i) {
-    out[0][i] = b[i];
-    out[1][i] = d1 * (lower1[i] - lower1[i + 1]);
-    out[2][i] = d2 * (lower2[i] - 2 * lower2[i + 1] + lower2[i + 2]);
+  const auto& C = pascal();
+  const auto B = [&](int m, int i) {
+    if (m < 0 || i < 0 || i > m) return 0.0;
+    const auto um = static_cast<std::size_t>(m), ui = static_cast<std::size_t>(i);
+    return C[um][ui] * tp[ui] * sp[um - ui];
+  };
+  for (int i = 0; i <= n; ++i) {
+    const auto ui = static_cast<std::size_t>(i);
+    out[0][ui] = B(n, i);
+    out[1][ui] = n * (B(n - 1, i - 1) - B(n - 1, i));
+    out[2][ui] = n * (n - 1) * (B(n - 2, i - 2) - 2 * B(n - 2, i - 1) + B(n - 2, i));
   }
 }
 

@@ -47,27 +47,29 @@ SurfaceDerivatives quotient(const Eigen::Vector4d& A, const Eigen::Vector4d& Au,
   return d;
 }
 
-/// The Bernstein basis of degree N at t with its first two derivatives, as nurbs::bernstein computes it (the
-/// same operations in the same order), for a degree known at compile time: the loops unroll.
+/// C(m, i) for the small degrees below, exact.
+constexpr double choose(int m, int i) {
+  double c = 1;
+  for (int k = 1; k <= i; ++k) c = c * (m - k + 1) / k;
+  return c;
+}
+
+/// The Bernstein basis of degree N at t with its first two derivatives, bit for bit as nurbs::bernstein computes
+/// it (the same power form, products in the same order), for a degree known at compile time: the loops unroll.
 template <int N>
 void basisOfDegree(double t, double (&b0)[N + 1], double (&b1)[N + 1], double (&b2)[N + 1]) {
+  double tp[N + 1], sp[N + 1];
+  tp[0] = sp[0] = 1.0;
   const double s = 1.0 - t;
-  double b[N + 1] = {}, lower1[N + 2] = {}, lower2[N + 3] = {};
-  b[0] = 1.0;
-  for (int m = 1; m <= N; ++m) {
-    if (m + 1 == N)
-      for (int j = 0; j < m; ++j) lower2[j + 2] = b[j];
-    if (m == N)
-      for (int j = 0; j < m; ++j) lower1[j + 1] = b[j];
-    b[m] = t * b[m - 1];
-    for (int i = m - 1; i > 0; --i) b[i] = t * b[i - 1] + s * b[i];
-    b[0] *= s;
+  for (int k = 1; k <= N; ++k) {
+    tp[k] = tp[k - 1] * t;
+    sp[k] = sp[k - 1] * s;
   }
-  const double d1 = N, d2 = N * (N - 1.0);
+  const auto B = [&](int m, int i) { return m < 0 || i < 0 || i > m ? 0.0 : choose(m, i) * tp[i] * sp[m - i]; };
   for (int i = 0; i <= N; ++i) {
-    b0[i] = b[i];
-    b1[i] = d1 * (lower1[i] - lower1[i + 1]);
-    b2[i] = d2 * (lower2[i] - 2 * lower2[i + 1] + lower2[i + 2]);
+    b0[i] = B(N, i);
+    b1[i] = N * (B(N - 1, i - 1) - B(N - 1, i));
+    b2[i] = N * (N - 1) * (B(N - 2, i - 2) - 2 * B(N - 2, i - 1) + B(N - 2, i));
   }
 }
 

@@ -12,9 +12,8 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 // Slack added to every cone angle: the cones are computed in floating point from rounded nets.
 constexpr double kAngleSlack = 1e-9;
-// What the cosine tests allow for: a slack a cone's cosine and sine left out (coneTowards) moves a cosine, a
-// sine or a product of them by at most its size, plus rounding.
-constexpr double kCosineSlack = 2 * kAngleSlack;
+// What the cone tests allow for (radians): the slack coneTowards leaves out of its cosine and sine, and rounding.
+constexpr double kConeSlack = 2 * kAngleSlack;
 
 double angleBetween(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
   // atan2 of |a x b| and a·b stays accurate near 0 and π, unlike acos.
@@ -157,21 +156,25 @@ Cone coneTowards(const Eigen::Vector3d& q, const Eigen::Vector3d& c, double r) {
   return out;
 }
 
-// With S the sum of the two angles and φ the angle between the axes: some direction of a within b or −b when
-// min(φ, π − φ) <= S, i.e. |cos φ| >= cos S (cos S <= 0 when S >= π/2, and then it always holds).
+// With S the sum of the two angles, φ the angle between the axes and φ' = min(φ, π − φ) (cos φ' = |a·b|,
+// sin φ' = |a x b|, both accurate for small angles, where a cosine alone is not): some direction of a within b
+// or −b when φ' <= S, i.e. sin(φ' − S) <= 0; always when S >= π/2. The slack is in radians (sines of small
+// angles), so tiny cones stay tiny.
 bool meetsEitherWay(const Cone& a, const Cone& b) {
   if (a.all || b.all) return true;
-  const double cosSum = a.cosine * b.cosine - a.sine * b.sine;
-  return std::abs(a.axis.dot(b.axis)) >= cosSum - kCosineSlack;
+  const double cosSum = a.cosine * b.cosine - a.sine * b.sine, sinSum = a.sine * b.cosine + a.cosine * b.sine;
+  if (cosSum <= 0) return true;
+  const double c = std::abs(a.axis.dot(b.axis)), s = a.axis.cross(b.axis).norm();
+  return s * cosSum - c * sinSum <= kConeSlack;
 }
 
-// Some pair orthogonal when |φ − π/2| <= S: always when S >= π/2, else when |cos φ| <= sin S.
+// Some pair orthogonal when |φ − π/2| <= S, i.e. ψ = π/2 − φ' <= S (sin ψ = |a·b|, cos ψ = |a x b|).
 bool canBeOrthogonal(const Cone& a, const Cone& b) {
   if (a.all || b.all) return true;
-  const double cosSum = a.cosine * b.cosine - a.sine * b.sine;
-  if (cosSum <= kCosineSlack) return true;
-  const double sinSum = a.sine * b.cosine + a.cosine * b.sine;
-  return std::abs(a.axis.dot(b.axis)) <= sinSum + kCosineSlack;
+  const double cosSum = a.cosine * b.cosine - a.sine * b.sine, sinSum = a.sine * b.cosine + a.cosine * b.sine;
+  if (cosSum <= 0) return true;
+  const double c = std::abs(a.axis.dot(b.axis)), s = a.axis.cross(b.axis).norm();
+  return c * cosSum - s * sinSum <= kConeSlack;
 }
 
 bool mayHoldCritical(const PatchNode& n, const Cone& towards, bool corners) {
@@ -209,51 +212,6 @@ void tangentCones(const RationalBezierPatch& patch, Cone& cu, Cone& cv) {
   cv = coneOfVectors(derivativeCoefficients(patch, true));
 }
 
-namespace {
-
-/// The frame box of a node: third axis along its normal cone (or Su x Sv of the cone axes), first along Su.
-FrameBox frameBoxOf(const RationalBezierPatch& net, const BoundingSphere& ball, const Cone& cu, const Cone& cv,
-                    const Cone& normal) {
-  FrameBox box;
-  Eigen::Vector3d e3 = Eigen::Vector3d::UnitZ();
-  if (!normal.all) {
-    e3 = normal.axis;
-  } else if (!cu.all && !cv.all && cu.axis.cross(cv.axis).norm() > 1e-3) {
-    e3 = cu.axis.cross(cv.axis).normalized();
-  }
-  Eigen::Vector3d e1 = cu.all ? Eigen::Vector3d::UnitX() : cu.axis;
-  e1 -= e1.dot(e3) * e3;
-  if (!(e1.norm() > 1e-3)) e1 = e3.unitOrthogonal();
-  e1.normalize();
-  box.axes.row(0) = e1;
-  box.axes.row(1) = e3.cross(e1).normalized();
-  box.axes.row(2) = e3;
-  box.lo.setConstant(std::numeric_limits<double>::infinity());
-  box.hi.setConstant(-std::numeric_limits<double>::infinity());
-  for (const Eigen::Vector4d& h : net.net) {
-    const Eigen::Vector3d y = box.axes * (Eigen::Vector3d(h.head<3>() / h[3]) - ball.center);
-    box.lo = box.lo.cwiseMin(y);
-    box.hi = box.hi.cwiseMax(y);
-  }
-  // The net's rounding as the ball allows for it (256 ulps of the coordinates), and this computation's.
-  const double scale = ball.center.cwiseAbs().maxCoeff() + ball.radius;
-  const double widen = 256 * std::numeric_limits<double>::epsilon() * scale;
-  box.lo.array() -= widen;
-  box.hi.array() += widen;
-  return box;
-}
-
-}  // namespace
-
-double boxDistance(const PatchNode& n, const Eigen::Vector3d& q) {
-  const Eigen::Vector3d r = q - n.ball.center;
-  const Eigen::Vector3d y = n.box.axes * r;
-  const Eigen::Vector3d outside = (n.box.lo - y).cwiseMax(y - n.box.hi).cwiseMax(0.0);
-  // The frame is orthonormal to a few ulps and r and y are rounded: allow 1e-12 of |r| and ulps of q.
-  const double slack = 1e-12 * r.norm() + 8 * std::numeric_limits<double>::epsilon() * q.cwiseAbs().maxCoeff();
-  return std::max(0.0, outside.norm() - slack);
-}
-
 RationalBezierPatch subpatch(const RationalBezierPatch& patch, double s0, double s1, double t0, double t1) {
   RationalBezierPatch out = restrict(restrict(patch, 0, s0, s1), 1, t0, t1);
   const Eigen::Vector2d first = patch.surfaceParam(s0, t0), last = patch.surfaceParam(s1, t1);
@@ -279,7 +237,6 @@ std::unique_ptr<PatchNode> makeNode(RationalBezierPatch net, int patch, int dept
   n->ball = ballOfNet(n->net.net);
   tangentCones(n->net, n->cu, n->cv);
   n->normal = crossCone(n->cu, n->cv);
-  n->box = frameBoxOf(n->net, n->ball, n->cu, n->cv, n->normal);
   const int p = n->net.degreeU, q = n->net.degreeV;
   n->corners = {n->net.point(0, 0), n->net.point(p, 0), n->net.point(0, q), n->net.point(p, q)};
   return n;
