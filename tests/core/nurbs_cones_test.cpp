@@ -31,12 +31,15 @@ TEST(NurbsCones, TestsAgreeWithTheAngles) {
       const Vec off = a.cross(b).normalized();
       b = k % 4 == 0 ? Vec((a + 1e-4 * U(rng) * off).normalized()) : Vec((off + 1e-4 * U(rng) * a).normalized());
     }
-    const double alpha = tiny ? 1e-5 * A(rng) : A(rng), beta = tiny ? 1e-5 * A(rng) : A(rng) * (k % 3 == 0 ? 0.05 : 1.0);
+    const double alpha = tiny ? 1e-5 * A(rng) : A(rng);
+    const double beta = tiny ? 1e-5 * A(rng) : A(rng) * (k % 3 == 0 ? 0.05 : 1.0);
     const nurbs::Cone ca = nurbs::makeCone(a, alpha), cb = nurbs::makeCone(b, beta);
     const double phi = std::atan2(a.cross(b).norm(), a.dot(b)), sum = alpha + beta;
     const double meet = std::min(phi, kPi - phi) - sum;  // <= 0: some direction of a within ±b
     const double orth = std::abs(phi - 0.5 * kPi) - sum;  // <= 0: some pair orthogonal
-    const auto where = [&] { return "phi " + std::to_string(phi) + " angles " + std::to_string(alpha) + ", " + std::to_string(beta); };
+    const auto where = [&] {
+      return "phi " + std::to_string(phi) + " angles " + std::to_string(alpha) + ", " + std::to_string(beta);
+    };
     if (meet <= 0) {
       ASSERT_TRUE(nurbs::meetsEitherWay(ca, cb)) << where();
     }

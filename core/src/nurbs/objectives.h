@@ -54,7 +54,8 @@ class PointObjective final : public Objective {
   // are polished too (otherwise a query on the surface would subdivide down to the tolerance).
   double leafScale(const BoundingSphere& b) const override { return std::max((q_ - b.center).norm(), floor_); }
   bool provesNoMinimum(const PatchNode& n, double negligible) const override {
-    return conesProveNoMinimum(n, criticalDirections(n.ball)) || pointHoldsNoMinimum(n, q_, gradientScratch(), negligible);
+    return conesProveNoMinimum(n, criticalDirections(n.ball)) ||
+           pointHoldsNoMinimum(n, q_, gradientScratch(), negligible);
   }
 
  private:
@@ -82,7 +83,8 @@ class SupportObjective final : public Objective {
   }
   double leafScale(const BoundingSphere&) const override { return size_; }
   bool provesNoMinimum(const PatchNode& n, double negligible) const override {
-    return conesProveNoMinimum(n, criticalDirections(n.ball)) || supportHoldsNoMinimum(n, d_, gradientScratch(), negligible);
+    return conesProveNoMinimum(n, criticalDirections(n.ball)) ||
+           supportHoldsNoMinimum(n, d_, gradientScratch(), negligible);
   }
 
  private:

@@ -28,7 +28,6 @@ struct Open {
 struct Buffers {
   std::vector<PatchHit> hits, polished;
   std::vector<Open> open;  // a heap on `lower` (std::push_heap / pop_heap with greater: least on top)
-  std::vector<double> values;
   std::vector<std::unique_ptr<PatchNode>> arena;  // nodes below the cached depth, freed after the search
   bool busy = false;
 };
