@@ -51,15 +51,23 @@ int signOver(const std::vector<double>& g, int cols, int k0, int k1, int l0, int
   return sign;
 }
 
-/// The node's net row (an s edge) or column (a t edge) `line` lies within `negligible` of its first point: a
-/// collapsed patch edge (a pole), every point of which is within that of the corner the search evaluates.
-bool collapsed(const PatchNode& n, bool sEdge, int line, double negligible) {
+/// The largest distance of the points of the node's net row (an s edge) or column (a t edge) `line` from its
+/// first point.
+double edgeSpread(const PatchNode& n, bool sEdge, int line) {
   const int count = sEdge ? n.net.degreeV : n.net.degreeU;
   const Eigen::Vector3d first = sEdge ? n.net.point(line, 0) : n.net.point(0, line);
+  double spread = 0;
   for (int k = 1; k <= count; ++k)
-    if (((sEdge ? n.net.point(line, k) : n.net.point(k, line)) - first).norm() > negligible) return false;
-  return true;
+    spread = std::max(spread, ((sEdge ? n.net.point(line, k) : n.net.point(k, line)) - first).norm());
+  return spread;
 }
+
+/// The line lies within `negligible` of its first point: a collapsed patch edge (a pole), every point of which
+/// is within that of the corner the search evaluates.
+bool collapsed(const PatchNode& n, bool sEdge, int line, double negligible) {
+  return edgeSpread(n, sEdge, line) <= negligible;
+}
+
 
 /// The sign of a numerator (grid of degree (a, b), `cols` = b + 1) over the node away from its collapsed edges
 /// (pole[0..3]: s = 0, s = 1, t = 0, t = 1): +1 or −1 when every coefficient off those edges' lines has it
@@ -107,14 +115,19 @@ int signAwayFromPoles(const std::vector<double>& g, int a, int b, const bool pol
 /// component along the edge never zero, or the other pointing out of the patch), collapsed edges aside (a
 /// pole: every point there is within `negligible` of the corner the search evaluates). Without the strip rule
 /// every piece at a pole would fail (S_s vanishes along it) and be split down to the tolerance.
-bool noMinimum(const GradientForm& F, const std::vector<double>& u, const std::vector<double>& v, const PatchNode& n,
-               double margin, double negligible) {
+/// `signs` are those of all of u and all of v (signOfAll; the common case, no pole, needs no other pass).
+bool noMinimum(const GradientForm& F, const std::vector<double>& u, const std::vector<double>& v, const int signs[2],
+               const PatchNode& n, double margin, double negligible) {
   const bool s0 = n.s0 == 0, s1 = n.s1 == 1, t0 = n.t0 == 0, t1 = n.t1 == 1;
-  const bool pole[4] = {s0 && collapsed(n, true, 0, negligible), s1 && collapsed(n, true, n.net.degreeU, negligible),
-                        t0 && collapsed(n, false, 0, negligible), t1 && collapsed(n, false, n.net.degreeV, negligible)};
-  if (signAwayFromPoles(u, F.su, F.tu, pole, margin, F.speedS, F.speedT, negligible) == 0 &&
-      signAwayFromPoles(v, F.sv, F.tv, pole, margin, F.speedS, F.speedT, negligible) == 0)
+  const bool pole[4] = {s0 && F.edgeSpread[0] <= negligible, s1 && F.edgeSpread[1] <= negligible,
+                        t0 && F.edgeSpread[2] <= negligible, t1 && F.edgeSpread[3] <= negligible};
+  if (pole[0] || pole[1] || pole[2] || pole[3]) {
+    if (signAwayFromPoles(u, F.su, F.tu, pole, margin, F.speedS, F.speedT, negligible) == 0 &&
+        signAwayFromPoles(v, F.sv, F.tv, pole, margin, F.speedS, F.speedT, negligible) == 0)
+      return false;
+  } else if (signs[0] == 0 && signs[1] == 0) {
     return false;
+  }
   const int cu = F.tu + 1, cv = F.tv + 1;
   // Edge s = 0: a minimum there has ∂/∂t = 0 and ∂/∂s >= 0; edge s = 1: ∂/∂s <= 0. Likewise for t.
   if (s0 && !pole[0] && signOver(v, cv, 0, 0, 0, F.tv, margin) == 0 && signOver(u, cu, 0, 0, 0, F.tu, margin) >= 0)
@@ -167,9 +180,14 @@ std::shared_ptr<const GradientForm> makeForm(const PatchNode& n) {
   const auto scaled = [](double w, const Eigen::Vector3d& d) -> Eigen::Vector3d { return w * d; };
   const Eigen::Vector3d zero = Eigen::Vector3d::Zero();
   product(p, q, X, 2 * p - 1, 2 * q, du, dot, 0.0, F->pu);
-  product(p, q, W, 2 * p - 1, 2 * q, du, scaled, zero, F->qu);
+  std::vector<Eigen::Vector3d> qu, qv;
+  product(p, q, W, 2 * p - 1, 2 * q, du, scaled, zero, qu);
   product(p, q, X, 2 * p, 2 * q - 1, dv, dot, 0.0, F->pv);
-  product(p, q, W, 2 * p, 2 * q - 1, dv, scaled, zero, F->qv);
+  product(p, q, W, 2 * p, 2 * q - 1, dv, scaled, zero, qv);
+  for (int c = 0; c < 3; ++c) {
+    for (const Eigen::Vector3d& x : qu) F->qu[static_cast<std::size_t>(c)].push_back(x[c]);
+    for (const Eigen::Vector3d& x : qv) F->qv[static_cast<std::size_t>(c)].push_back(x[c]);
+  }
   F->su = 3 * p - 1;
   F->tu = 3 * q;
   F->sv = 3 * p;
@@ -185,6 +203,10 @@ std::shared_ptr<const GradientForm> makeForm(const PatchNode& n) {
   F->sizeQ = wmax * dmax;
   F->errP = wmax * reach * deltaD + deltaX * (dmax + deltaD) + rounding * F->sizeP;
   F->errQ = wmax * deltaD + kNetUlps * kEps * F->sizeQ + rounding * F->sizeQ;
+  F->edgeSpread[0] = edgeSpread(n, true, 0);
+  F->edgeSpread[1] = edgeSpread(n, true, p);
+  F->edgeSpread[2] = edgeSpread(n, false, 0);
+  F->edgeSpread[3] = edgeSpread(n, false, q);
   return F;
 }
 
@@ -203,26 +225,52 @@ const GradientForm& gradientForm(const PatchNode& n) {
   return *n.gradient;
 }
 
+/// The coefficients c_k = p_k − r·q_k into out (p empty: 0 − r·q_k); +1 or −1 when every one lies beyond
+/// `margin` with that sign, else 0.
+int combine(const std::vector<double>& p, const Eigen::Vector3d& r, const std::array<std::vector<double>, 3>& q,
+            double margin, std::vector<double>& out) {
+  const std::size_t count = q[0].size();
+  out.resize(count);
+  const double *x = q[0].data(), *y = q[1].data(), *z = q[2].data();
+  double* c = out.data();
+  const double rx = r.x(), ry = r.y(), rz = r.z();
+  if (p.empty()) {
+    for (std::size_t k = 0; k < count; ++k) c[k] = -(rx * x[k] + ry * y[k] + rz * z[k]);
+  } else {
+    const double* pk = p.data();
+    for (std::size_t k = 0; k < count; ++k) c[k] = pk[k] - (rx * x[k] + ry * y[k] + rz * z[k]);
+  }
+  std::size_t above = 0, below = 0;
+  for (std::size_t k = 0; k < count; ++k) {
+    above += c[k] > margin;
+    below += c[k] < -margin;
+  }
+  return above == count ? 1 : (below == count ? -1 : 0);
+}
+
+/// No patch edge in the node: only interior minima, which need both components zero.
+bool interior(const PatchNode& n) { return n.s0 > 0 && n.s1 < 1 && n.t0 > 0 && n.t1 < 1; }
+
 bool pointHoldsNoMinimum(const PatchNode& n, const Eigen::Vector3d& q, GradientScratch& g, double negligible) {
   const GradientForm& F = gradientForm(n);
   const Eigen::Vector3d r = q - F.centre;
-  g.u.resize(F.pu.size());
-  g.v.resize(F.pv.size());
-  for (std::size_t k = 0; k < F.pu.size(); ++k) g.u[k] = F.pu[k] - r.dot(F.qu[k]);
-  for (std::size_t k = 0; k < F.pv.size(); ++k) g.v[k] = F.pv[k] - r.dot(F.qv[k]);
   // r itself is rounded by an ulp of the larger of q and the centre.
   const double slack = 2 * kEps * (q.cwiseAbs().maxCoeff() + F.centre.cwiseAbs().maxCoeff()) * std::sqrt(3.0);
   const double margin = F.errP + r.norm() * F.errQ + slack * F.sizeQ + 8 * kEps * (F.sizeP + r.norm() * F.sizeQ);
-  return noMinimum(F, g.u, g.v, n, margin, negligible);
+  int signs[2];
+  signs[0] = combine(F.pu, r, F.qu, margin, g.u);
+  if (signs[0] != 0 && interior(n)) return true;  // ∂/∂s never zero (the usual proof: v is not needed)
+  signs[1] = combine(F.pv, r, F.qv, margin, g.v);
+  if (interior(n)) return signs[1] != 0;
+  return noMinimum(F, g.u, g.v, signs, n, margin, negligible);
 }
 
 bool supportHoldsNoMinimum(const PatchNode& n, const Eigen::Vector3d& d, GradientScratch& g, double negligible) {
   const GradientForm& F = gradientForm(n);
-  g.u.resize(F.qu.size());
-  g.v.resize(F.qv.size());
-  for (std::size_t k = 0; k < F.qu.size(); ++k) g.u[k] = -d.dot(F.qu[k]);
-  for (std::size_t k = 0; k < F.qv.size(); ++k) g.v[k] = -d.dot(F.qv[k]);
-  return noMinimum(F, g.u, g.v, n, F.errQ + 8 * kEps * F.sizeQ, negligible);
+  const double margin = F.errQ + 8 * kEps * F.sizeQ;
+  const std::vector<double> none;
+  const int signs[2] = {combine(none, d, F.qu, margin, g.u), combine(none, d, F.qv, margin, g.v)};
+  return noMinimum(F, g.u, g.v, signs, n, margin, negligible);
 }
 
 }  // namespace unidist::nurbs

@@ -15,6 +15,7 @@
 
 #include "nurbs/patch_tree.h"
 
+#include <array>
 #include <vector>
 
 namespace unidist::nurbs {
@@ -24,12 +25,15 @@ namespace unidist::nurbs {
 struct GradientForm {
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();
   int su = 0, tu = 0, sv = 0, tv = 0;  // degrees (s, t) of the ∂/∂s and ∂/∂t grids
-  std::vector<double> pu, pv;           // X'·D
-  std::vector<Eigen::Vector3d> qu, qv;  // W D
+  std::vector<double> pu, pv;            // X'·D
+  std::array<std::vector<double>, 3> qu, qv;  // W D, coordinate by coordinate (a query's loop is vectorised)
   // Every |coefficient| is at most sizeP (X'·D) or sizeQ (W D); errP and errQ bound their distance from the
   // exact subpatch's (the net's rounding and this computation's).
   double sizeP = 0, sizeQ = 0, errP = 0, errQ = 0;
   double speedS = 0, speedT = 0;  // bounds on |S_s| and |S_t| over the piece (its own parameters)
+  // Per net edge (s = 0, s = 1, t = 0, t = 1): the largest distance of its control points from its first one,
+  // so that a collapsed edge (a pole) is recognised without touching the net per query.
+  double edgeSpread[4] = {0, 0, 0, 0};
 };
 
 /// The point of a patch edge collapsed to within `negligible` (a pole) that the node touches, or null.

@@ -47,6 +47,58 @@ SurfaceDerivatives quotient(const Eigen::Vector4d& A, const Eigen::Vector4d& Au,
   return d;
 }
 
+/// C(m, i) for the small degrees below, exact.
+constexpr double choose(int m, int i) {
+  double c = 1;
+  for (int k = 1; k <= i; ++k) c = c * (m - k + 1) / k;
+  return c;
+}
+
+/// The Bernstein basis of degree N at t with its first two derivatives, bit for bit as nurbs::bernstein computes
+/// it (the same power form, products in the same order), for a degree known at compile time: the loops unroll.
+template <int N>
+void basisOfDegree(double t, double (&b0)[N + 1], double (&b1)[N + 1], double (&b2)[N + 1]) {
+  double tp[N + 1], sp[N + 1];
+  tp[0] = sp[0] = 1.0;
+  const double s = 1.0 - t;
+  for (int k = 1; k <= N; ++k) {
+    tp[k] = tp[k - 1] * t;
+    sp[k] = sp[k - 1] * s;
+  }
+  const auto B = [&](int m, int i) { return m < 0 || i < 0 || i > m ? 0.0 : choose(m, i) * tp[i] * sp[m - i]; };
+  for (int i = 0; i <= N; ++i) {
+    b0[i] = B(N, i);
+    b1[i] = N * (B(N - 1, i - 1) - B(N - 1, i));
+    b2[i] = N * (N - 1) * (B(N - 2, i - 2) - 2 * B(N - 2, i - 1) + B(N - 2, i));
+  }
+}
+
+/// RationalBezierPatch::derivatives for degrees (P, Q) known at compile time (the Newton polish evaluates
+/// patches of degree <= 3 in nearly every query; the general loops cost it about twice as much).
+template <int P, int Q>
+SurfaceDerivatives derivativesOfDegree(const std::vector<Eigen::Vector4d>& net, double s, double t) {
+  double bu[3][P + 1], bv[3][Q + 1];
+  basisOfDegree<P>(s, bu[0], bu[1], bu[2]);
+  basisOfDegree<Q>(t, bv[0], bv[1], bv[2]);
+  Eigen::Vector4d A = Eigen::Vector4d::Zero(), Au = A, Av = A, Auu = A, Auv = A, Avv = A;
+  for (int i = 0; i <= P; ++i) {
+    Eigen::Vector4d row0 = Eigen::Vector4d::Zero(), row1 = row0, row2 = row0;
+    for (int j = 0; j <= Q; ++j) {
+      const Eigen::Vector4d& h = net[static_cast<std::size_t>(i * (Q + 1) + j)];
+      row0 += bv[0][j] * h;
+      row1 += bv[1][j] * h;
+      row2 += bv[2][j] * h;
+    }
+    A += bu[0][i] * row0;
+    Av += bu[0][i] * row1;
+    Avv += bu[0][i] * row2;
+    Au += bu[1][i] * row0;
+    Auv += bu[1][i] * row1;
+    Auu += bu[2][i] * row0;
+  }
+  return quotient(A, Au, Av, Auu, Auv, Avv);
+}
+
 }  // namespace
 
 NurbsSurface::NurbsSurface(int degreeU, int degreeV, std::vector<double> knotsU, std::vector<double> knotsV,
@@ -146,6 +198,18 @@ Eigen::Vector2d RationalBezierPatch::surfaceParam(double s, double t) const {
 }
 
 SurfaceDerivatives RationalBezierPatch::derivatives(double s, double t) const {
+  switch (degreeU <= 3 && degreeV <= 3 ? degreeU * 4 + degreeV : 0) {
+    case 1 * 4 + 1: return derivativesOfDegree<1, 1>(net, s, t);
+    case 1 * 4 + 2: return derivativesOfDegree<1, 2>(net, s, t);
+    case 1 * 4 + 3: return derivativesOfDegree<1, 3>(net, s, t);
+    case 2 * 4 + 1: return derivativesOfDegree<2, 1>(net, s, t);
+    case 2 * 4 + 2: return derivativesOfDegree<2, 2>(net, s, t);
+    case 2 * 4 + 3: return derivativesOfDegree<2, 3>(net, s, t);
+    case 3 * 4 + 1: return derivativesOfDegree<3, 1>(net, s, t);
+    case 3 * 4 + 2: return derivativesOfDegree<3, 2>(net, s, t);
+    case 3 * 4 + 3: return derivativesOfDegree<3, 3>(net, s, t);
+    default: break;
+  }
   std::array<std::array<double, 32>, 3> bu, bv;
   nurbs::bernstein(degreeU, s, bu);
   nurbs::bernstein(degreeV, t, bv);

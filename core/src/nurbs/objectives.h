@@ -10,6 +10,17 @@
 
 namespace unidist::nurbs {
 
+/// Buffers of the Bernstein bound and the certificate, one set per thread (neither calls back into a search), so
+/// that a query allocates nothing for them once its thread is warm.
+inline BernsteinScratch& bernsteinScratch() {
+  thread_local BernsteinScratch s;
+  return s;
+}
+inline GradientScratch& gradientScratch() {
+  thread_local GradientScratch s;
+  return s;
+}
+
 /// The cheap first try of provesNoMinimum: the tangent cones. Su never orthogonal to the objective's direction
 /// rules out interior critical points and those on the edges t = const, likewise Sv (Su and Sv vanish only on
 /// collapsed edges, whose points are a corner's).
@@ -30,7 +41,7 @@ class PointObjective final : public Objective {
     return std::max(0.0, (q_ - n.ball.center).norm() - n.ball.radius);
   }
   double tightLowerBound(const PatchNode& n) const override {
-    return std::max(lowerBound(n), bernsteinDistanceBound(n.net, q_, scratch_));
+    return std::max(lowerBound(n), bernsteinDistanceBound(n.net, q_, bernsteinScratch()));
   }
   Cone criticalDirections(const BoundingSphere& b) const override { return coneTowards(q_, b.center, b.radius); }
   void derivatives(const SurfaceDerivatives& d, Eigen::Vector2d& g, Eigen::Matrix2d& H) const override {
@@ -43,14 +54,13 @@ class PointObjective final : public Objective {
   // are polished too (otherwise a query on the surface would subdivide down to the tolerance).
   double leafScale(const BoundingSphere& b) const override { return std::max((q_ - b.center).norm(), floor_); }
   bool provesNoMinimum(const PatchNode& n, double negligible) const override {
-    return conesProveNoMinimum(n, criticalDirections(n.ball)) || pointHoldsNoMinimum(n, q_, gradient_, negligible);
+    return conesProveNoMinimum(n, criticalDirections(n.ball)) ||
+           pointHoldsNoMinimum(n, q_, gradientScratch(), negligible);
   }
 
  private:
   Eigen::Vector3d q_;
   double floor_;
-  mutable BernsteinScratch scratch_;  // one objective per query and thread
-  mutable GradientScratch gradient_;
 };
 
 /// −d·S: its minimiser is a support point in direction d.
@@ -66,20 +76,20 @@ class SupportObjective final : public Objective {
     for (const Eigen::Vector4d& h : n.net.net) most = std::max(most, d_.dot(h.head<3>() / h[3]));
     return -most - 256 * std::numeric_limits<double>::epsilon() * (n.ball.center.cwiseAbs().maxCoeff() + n.ball.radius);
   }
-  Cone criticalDirections(const BoundingSphere&) const override { return Cone{d_.normalized(), 0.0, false}; }
+  Cone criticalDirections(const BoundingSphere&) const override { return makeCone(d_.normalized(), 0.0); }
   void derivatives(const SurfaceDerivatives& s, Eigen::Vector2d& g, Eigen::Matrix2d& H) const override {
     g << -d_.dot(s.du), -d_.dot(s.dv);
     H << -d_.dot(s.duu), -d_.dot(s.duv), -d_.dot(s.duv), -d_.dot(s.dvv);
   }
   double leafScale(const BoundingSphere&) const override { return size_; }
   bool provesNoMinimum(const PatchNode& n, double negligible) const override {
-    return conesProveNoMinimum(n, criticalDirections(n.ball)) || supportHoldsNoMinimum(n, d_, gradient_, negligible);
+    return conesProveNoMinimum(n, criticalDirections(n.ball)) ||
+           supportHoldsNoMinimum(n, d_, gradientScratch(), negligible);
   }
 
  private:
   Eigen::Vector3d d_;
   double size_;
-  mutable GradientScratch gradient_;
 };
 
 }  // namespace unidist::nurbs

@@ -3,7 +3,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <queue>
+#include <functional>
+#include <memory>
 
 namespace unidist::nurbs {
 namespace {
@@ -20,6 +21,47 @@ struct Open {
   const PatchNode* node;
   int certSplits = 0;  // levels split since an ancestor failed its certificate (below)
   bool operator>(const Open& o) const { return lower > o.lower; }
+};
+
+/// The buffers of one search. Each thread keeps one set between its searches, so that a warm query allocates
+/// nothing here; a search that starts while the thread's set is in use gets a set of its own.
+struct Buffers {
+  std::vector<PatchHit> hits, polished;
+  std::vector<Open> open;  // a heap on `lower` (std::push_heap / pop_heap with greater: least on top)
+  std::vector<std::unique_ptr<PatchNode>> arena;  // nodes below the cached depth, freed after the search
+  bool busy = false;
+};
+
+class BorrowedBuffers {
+ public:
+  BorrowedBuffers() {
+    thread_local Buffers perThread;
+    if (perThread.busy) {
+      own_ = std::make_unique<Buffers>();
+      b_ = own_.get();
+    } else {
+      b_ = &perThread;
+    }
+    b_->busy = true;
+  }
+  ~BorrowedBuffers() {
+    b_->hits.clear();
+    b_->polished.clear();
+    b_->open.clear();
+    b_->arena.clear();
+    // An exhausted search leaves a large heap behind: not kept.
+    if (b_->open.capacity() > 4096) b_->open.shrink_to_fit();
+    if (b_->hits.capacity() > 4096) b_->hits.shrink_to_fit();
+    if (b_->arena.capacity() > 4096) b_->arena.shrink_to_fit();
+    b_->busy = false;
+  }
+  BorrowedBuffers(const BorrowedBuffers&) = delete;
+  BorrowedBuffers& operator=(const BorrowedBuffers&) = delete;
+  Buffers& operator*() const { return *b_; }
+
+ private:
+  Buffers* b_ = nullptr;
+  std::unique_ptr<Buffers> own_;
 };
 
 }  // namespace
@@ -96,22 +138,32 @@ SearchResult minimise(const PatchForest& forest, const std::vector<RationalBezie
                       double tolerance, double tieTolerance, int skip) {
   SearchResult out;
   out.best.value = std::numeric_limits<double>::infinity();
-  std::vector<PatchHit> hits, polished;
+  const BorrowedBuffers borrowed;
+  Buffers& buffers = *borrowed;
+  std::vector<PatchHit>& hits = buffers.hits;
+  std::vector<PatchHit>& polished = buffers.polished;
+  double keep = std::numeric_limits<double>::infinity();  // rank below which a point ties with the best
   auto offer = [&](const PatchHit& h) {
     hits.push_back(h);
-    if (h.value < out.best.value) out.best = h;
+    if (h.value < out.best.value) {
+      out.best = h;
+      keep = f.rankOf(out.best.value + tieTolerance);
+    }
   };
   auto offerCorners = [&](const PatchNode& n) {
     const double s[4] = {n.s0, n.s1, n.s0, n.s1}, t[4] = {n.t0, n.t0, n.t1, n.t1};
-    const double keep = f.rankOf(out.best.value + tieTolerance);
     for (int k = 0; k < 4; ++k) {
       const Eigen::Vector3d& c = n.corners[static_cast<std::size_t>(k)];
       if (f.rank(c) < keep) offer({n.patch, s[k], t[k], f.value(c), c});
     }
   };
 
-  std::priority_queue<Open, std::vector<Open>, std::greater<Open>> open;
-  std::vector<std::unique_ptr<PatchNode>> arena;
+  std::vector<Open>& open = buffers.open;
+  const auto push = [&open](const Open& o) {
+    open.push_back(o);
+    std::push_heap(open.begin(), open.end(), std::greater<Open>());
+  };
+  std::vector<std::unique_ptr<PatchNode>>& arena = buffers.arena;
   // Seed (nodal mapping): Newton from the parameters of the control point with the best objective value, so
   // that the bound prunes from the start. Only a start: the search below proves or improves it.
   const PatchNode* seedNode = nullptr;
@@ -137,11 +189,12 @@ SearchResult minimise(const PatchForest& forest, const std::vector<RationalBezie
     offer(polished.back());
   }
   for (const auto& root : forest.roots)
-    if (root->patch != skip) open.push({f.lowerBound(*root), root.get(), 0});
+    if (root->patch != skip) push({f.lowerBound(*root), root.get(), 0});
   while (!open.empty()) {
-    const Open top = open.top();
+    const Open top = open.front();
     if (top.lower >= out.best.value - tolerance) break;
-    open.pop();
+    std::pop_heap(open.begin(), open.end(), std::greater<Open>());
+    open.pop_back();
     const PatchNode& n = *top.node;
     if (++out.nodes > kNurbsSearchBudget) {
       out.exhausted = true;
@@ -194,7 +247,7 @@ SearchResult minimise(const PatchForest& forest, const std::vector<RationalBezie
     for (const PatchNode* c : forest.children(n, arena)) {
       offerCorners(*c);
       const double lb = f.lowerBound(*c);
-      if (lb < out.best.value - tolerance) open.push({lb, c, certSplits});
+      if (lb < out.best.value - tolerance) push({lb, c, certSplits});
     }
   }
   for (const PatchHit& h : hits)

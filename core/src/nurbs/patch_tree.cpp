@@ -12,6 +12,8 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 // Slack added to every cone angle: the cones are computed in floating point from rounded nets.
 constexpr double kAngleSlack = 1e-9;
+// What the cone tests allow for (radians): the slack coneTowards leaves out of its cosine and sine, and rounding.
+constexpr double kConeSlack = 2 * kAngleSlack;
 
 double angleBetween(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
   // atan2 of |a x b| and a·b stays accurate near 0 and π, unlike acos.
@@ -117,7 +119,7 @@ Cone coneOfVectors(const std::vector<Eigen::Vector3d>& vectors) {
   if (!(leastCos > 0)) return Cone{};  // a vector at π/2 or beyond: the cone would not be convex
   const double angle = angleBetween(axis, *widest) + kAngleSlack;
   if (angle >= 0.5 * kPi) return Cone{};
-  return Cone{axis, angle, false};
+  return makeCone(axis, angle);
 }
 
 Cone crossCone(const Cone& cu, const Cone& cv) {
@@ -128,25 +130,51 @@ Cone crossCone(const Cone& cu, const Cone& cv) {
   const double s = std::sqrt(su * su + 2 * su * sv * std::abs(std::cos(beta)) + sv * sv) / std::sin(beta);
   if (!(s < 1)) return Cone{};
   const Eigen::Vector3d axis = cu.axis.cross(cv.axis);
-  return Cone{axis.normalized(), std::asin(s) + kAngleSlack, false};
+  return makeCone(axis.normalized(), std::asin(s) + kAngleSlack);
+}
+
+Cone makeCone(const Eigen::Vector3d& axis, double angle) {
+  Cone c;
+  c.axis = axis;
+  c.angle = angle;
+  c.all = false;
+  c.cosine = std::cos(angle);
+  c.sine = std::sin(angle);
+  return c;
 }
 
 Cone coneTowards(const Eigen::Vector3d& q, const Eigen::Vector3d& c, double r) {
   const Eigen::Vector3d d = q - c;
   const double n = d.norm();
   if (!(n > r * (1 + 1e-12))) return Cone{};
-  return Cone{d / n, std::asin(std::min(1.0, r / n)) + kAngleSlack, false};
+  Cone out;
+  out.axis = d / n;
+  out.all = false;
+  out.sine = std::min(1.0, r / n);
+  out.cosine = std::sqrt(std::max(0.0, 1 - out.sine * out.sine));  // of the angle without its slack
+  out.angle = std::asin(out.sine) + kAngleSlack;
+  return out;
 }
 
+// With S the sum of the two angles, φ the angle between the axes and φ' = min(φ, π − φ) (cos φ' = |a·b|,
+// sin φ' = |a x b|, both accurate for small angles, where a cosine alone is not): some direction of a within b
+// or −b when φ' <= S, i.e. sin(φ' − S) <= 0; always when S >= π/2. The slack is in radians (sines of small
+// angles), so tiny cones stay tiny.
 bool meetsEitherWay(const Cone& a, const Cone& b) {
   if (a.all || b.all) return true;
-  const double phi = angleBetween(a.axis, b.axis), sum = a.angle + b.angle;
-  return phi <= sum || kPi - phi <= sum;
+  const double cosSum = a.cosine * b.cosine - a.sine * b.sine, sinSum = a.sine * b.cosine + a.cosine * b.sine;
+  if (cosSum <= 0) return true;
+  const double c = std::abs(a.axis.dot(b.axis)), s = a.axis.cross(b.axis).norm();
+  return s * cosSum - c * sinSum <= kConeSlack;
 }
 
+// Some pair orthogonal when |φ − π/2| <= S, i.e. ψ = π/2 − φ' <= S (sin ψ = |a·b|, cos ψ = |a x b|).
 bool canBeOrthogonal(const Cone& a, const Cone& b) {
   if (a.all || b.all) return true;
-  return std::abs(angleBetween(a.axis, b.axis) - 0.5 * kPi) <= a.angle + b.angle;
+  const double cosSum = a.cosine * b.cosine - a.sine * b.sine, sinSum = a.sine * b.cosine + a.cosine * b.sine;
+  if (cosSum <= 0) return true;
+  const double c = std::abs(a.axis.dot(b.axis)), s = a.axis.cross(b.axis).norm();
+  return c * cosSum - s * sinSum <= kConeSlack;
 }
 
 bool mayHoldCritical(const PatchNode& n, const Cone& towards, bool corners) {

@@ -16,12 +16,18 @@ namespace unidist::nurbs {
 
 struct GradientForm;
 
-/// A cone of directions {axis, half-angle}; `all` means every direction (no bound).
+/// A cone of directions {axis, half-angle}; `all` means every direction (no bound). The cosine and sine of the
+/// angle are kept so that the tests below need no trigonometry; they may leave out the angle's rounding slack,
+/// which the tests allow for. Make cones with makeCone.
 struct Cone {
   Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();
   double angle = 0;
   bool all = true;
+  double cosine = 1, sine = 0;
 };
+
+/// The cone {axis (unit), angle}.
+Cone makeCone(const Eigen::Vector3d& axis, double angle);
 
 /// Smallest-ish cone containing every non-zero vector given (incremental growth); all when some angle reaches π/2
 /// (a wider cone would not contain the non-negative combinations of its vectors).
