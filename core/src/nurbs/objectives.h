@@ -10,17 +10,6 @@
 
 namespace unidist::nurbs {
 
-/// Buffers of the Bernstein bound and the certificate, one set per thread (neither calls back into a search), so
-/// that a query allocates nothing for them once its thread is warm.
-inline BernsteinScratch& bernsteinScratch() {
-  thread_local BernsteinScratch s;
-  return s;
-}
-inline GradientScratch& gradientScratch() {
-  thread_local GradientScratch s;
-  return s;
-}
-
 /// The cheap first try of provesNoMinimum: the tangent cones. Su never orthogonal to the objective's direction
 /// rules out interior critical points and those on the edges t = const, likewise Sv (Su and Sv vanish only on
 /// collapsed edges, whose points are a corner's).
@@ -41,7 +30,7 @@ class PointObjective final : public Objective {
     return std::max(0.0, (q_ - n.ball.center).norm() - n.ball.radius);
   }
   double tightLowerBound(const PatchNode& n) const override {
-    return std::max(lowerBound(n), bernsteinDistanceBound(n.net, q_, bernsteinScratch()));
+    return std::max(lowerBound(n), bernsteinDistanceBound(n.net, q_, scratch_));
   }
   Cone criticalDirections(const BoundingSphere& b) const override { return coneTowards(q_, b.center, b.radius); }
   void derivatives(const SurfaceDerivatives& d, Eigen::Vector2d& g, Eigen::Matrix2d& H) const override {
@@ -55,12 +44,14 @@ class PointObjective final : public Objective {
   double leafScale(const BoundingSphere& b) const override { return std::max((q_ - b.center).norm(), floor_); }
   bool provesNoMinimum(const PatchNode& n, double negligible) const override {
     return conesProveNoMinimum(n, criticalDirections(n.ball)) ||
-           pointHoldsNoMinimum(n, q_, gradientScratch(), negligible);
+           pointHoldsNoMinimum(n, q_, gradient_, negligible);
   }
 
  private:
   Eigen::Vector3d q_;
   double floor_;
+  mutable BernsteinScratch scratch_;  // one objective per query and thread
+  mutable GradientScratch gradient_;
 };
 
 /// −d·S: its minimiser is a support point in direction d.
@@ -84,12 +75,13 @@ class SupportObjective final : public Objective {
   double leafScale(const BoundingSphere&) const override { return size_; }
   bool provesNoMinimum(const PatchNode& n, double negligible) const override {
     return conesProveNoMinimum(n, criticalDirections(n.ball)) ||
-           supportHoldsNoMinimum(n, d_, gradientScratch(), negligible);
+           supportHoldsNoMinimum(n, d_, gradient_, negligible);
   }
 
  private:
   Eigen::Vector3d d_;
   double size_;
+  mutable GradientScratch gradient_;  // one objective per query and thread
 };
 
 }  // namespace unidist::nurbs

@@ -23,45 +23,11 @@ struct Open {
   bool operator>(const Open& o) const { return lower > o.lower; }
 };
 
-/// The buffers of one search. Each thread keeps one set between its searches, so that a warm query allocates
-/// nothing here; a search that starts while the thread's set is in use gets a set of its own.
+/// The buffers of one search (per query: core keeps no state between queries).
 struct Buffers {
   std::vector<PatchHit> hits, polished;
   std::vector<Open> open;  // a heap on `lower` (std::push_heap / pop_heap with greater: least on top)
   std::vector<std::unique_ptr<PatchNode>> arena;  // nodes below the cached depth, freed after the search
-  bool busy = false;
-};
-
-class BorrowedBuffers {
- public:
-  BorrowedBuffers() {
-    thread_local Buffers perThread;
-    if (perThread.busy) {
-      own_ = std::make_unique<Buffers>();
-      b_ = own_.get();
-    } else {
-      b_ = &perThread;
-    }
-    b_->busy = true;
-  }
-  ~BorrowedBuffers() {
-    b_->hits.clear();
-    b_->polished.clear();
-    b_->open.clear();
-    b_->arena.clear();
-    // An exhausted search leaves a large heap behind: not kept.
-    if (b_->open.capacity() > 4096) b_->open.shrink_to_fit();
-    if (b_->hits.capacity() > 4096) b_->hits.shrink_to_fit();
-    if (b_->arena.capacity() > 4096) b_->arena.shrink_to_fit();
-    b_->busy = false;
-  }
-  BorrowedBuffers(const BorrowedBuffers&) = delete;
-  BorrowedBuffers& operator=(const BorrowedBuffers&) = delete;
-  Buffers& operator*() const { return *b_; }
-
- private:
-  Buffers* b_ = nullptr;
-  std::unique_ptr<Buffers> own_;
 };
 
 }  // namespace
@@ -138,8 +104,7 @@ SearchResult minimise(const PatchForest& forest, const std::vector<RationalBezie
                       double tolerance, double tieTolerance, int skip) {
   SearchResult out;
   out.best.value = std::numeric_limits<double>::infinity();
-  const BorrowedBuffers borrowed;
-  Buffers& buffers = *borrowed;
+  Buffers buffers;
   std::vector<PatchHit>& hits = buffers.hits;
   std::vector<PatchHit>& polished = buffers.polished;
   double keep = std::numeric_limits<double>::infinity();  // rank below which a point ties with the best
