@@ -183,8 +183,7 @@ SnchResult snchSearch(const TriangleMesh& a, const MeshFeatures& fa, const Trian
     // Lower bounds on the distance between the nodes' triangles: the balls', and the boxes' (B's turned).
     const double ballGap = (cb - sa.center).norm() - sa.radius - rb;
     const Eigen::Vector3d yc = X_AB * y.center();
-    const Eigen::Vector3d yh =
-        absR * Eigen::Vector3d(0.5 * (y.hi[0] - y.lo[0]), 0.5 * (y.hi[1] - y.lo[1]), 0.5 * (y.hi[2] - y.lo[2]));
+    const Eigen::Vector3d yh = absR * y.halfExtent();
     double boxSq = 0;
     for (int k = 0; k < 3; ++k) {
       const double g = std::max({x.lo[k] - (yc[k] + yh[k]), (yc[k] - yh[k]) - x.hi[k], 0.0});

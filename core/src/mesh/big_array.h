@@ -36,11 +36,16 @@ struct BigArrayAllocator {
   BigArrayAllocator(const BigArrayAllocator<U>&) noexcept {}  // NOLINT(google-explicit-constructor): allocator rebind
 
   static bool big(std::size_t n) { return n >= kBigArrayBytes / sizeof(T); }
+  /// The bytes a buffer of n elements takes: whole huge pages when big.
+  static std::size_t bufferBytes(std::size_t n) {
+    const std::size_t bytes = n * sizeof(T);
+    return big(n) ? (bytes + kHugePageBytes - 1) / kHugePageBytes * kHugePageBytes : bytes;
+  }
 
   T* allocate(std::size_t n) {
     if (n > std::numeric_limits<std::size_t>::max() / sizeof(T) - kHugePageBytes) throw std::bad_array_new_length();
     if (!big(n)) return static_cast<T*>(::operator new(n * sizeof(T)));
-    const std::size_t bytes = (n * sizeof(T) + kHugePageBytes - 1) / kHugePageBytes * kHugePageBytes;
+    const std::size_t bytes = bufferBytes(n);
     void* p = std::aligned_alloc(kHugePageBytes, bytes);
     if (p == nullptr) throw std::bad_alloc();
 #if defined(__linux__) && defined(MADV_HUGEPAGE)
@@ -73,9 +78,7 @@ using BigVector = std::vector<T, BigArrayAllocator<T>>;
 /// The memory a BigVector's buffer takes, huge-page rounding included.
 template <class T>
 std::size_t footprintBytes(const BigVector<T>& v) {
-  const std::size_t bytes = v.capacity() * sizeof(T);
-  if (!BigArrayAllocator<T>::big(v.capacity())) return bytes;
-  return (bytes + kHugePageBytes - 1) / kHugePageBytes * kHugePageBytes;
+  return BigArrayAllocator<T>::bufferBytes(v.capacity());
 }
 
 }  // namespace unidist::mesh

@@ -51,6 +51,7 @@ struct Work {
   void swap(std::uint32_t i, std::uint32_t j) {
     std::swap(items[i], items[j]);
     std::swap(ids[i], ids[j]);
+    std::swap(bins[i], bins[j]);
   }
   /// Moves the items whose bin is below `plane` to the front of [b, e); returns the first of the others.
   std::uint32_t partitionByBin(std::uint32_t b, std::uint32_t e, std::uint8_t plane) {
@@ -60,7 +61,6 @@ struct Work {
       while (i < j && bins[j - 1] >= plane) --j;
       if (i >= j) return i;
       swap(i, j - 1);
-      std::swap(bins[i], bins[j - 1]);
       ++i;
       --j;
     }
@@ -459,10 +459,8 @@ MeshBvh buildMeshBvh(const std::vector<Eigen::Vector3d>& vertices,
     } else {
       for (std::uint32_t child : {node.first, node.first + 1})
         reach = std::max(reach, (m.spheres[child].center - c).norm() + m.spheres[child].radius);
-      const Eigen::Vector3d half(0.5 * (node.hi[0] - node.lo[0]), 0.5 * (node.hi[1] - node.lo[1]),
-                                 0.5 * (node.hi[2] - node.lo[2]));
       // The stored centre is the true box centre up to its rounding (ε of its coordinates), hence the pad.
-      reach = std::min(reach, half.norm() + 4.0 * kEps * c.cwiseAbs().sum());
+      reach = std::min(reach, node.halfExtent().norm() + 4.0 * kEps * c.cwiseAbs().sum());
     }
     m.spheres[i] = {c, paddedRadius(reach)};
   }

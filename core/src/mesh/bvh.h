@@ -65,6 +65,7 @@ struct BvhNode {
   Eigen::Vector3d center() const {
     return {0.5 * lo[0] + 0.5 * hi[0], 0.5 * lo[1] + 0.5 * hi[1], 0.5 * lo[2] + 0.5 * hi[2]};
   }
+  Eigen::Vector3d halfExtent() const { return {0.5 * (hi[0] - lo[0]), 0.5 * (hi[1] - lo[1]), 0.5 * (hi[2] - lo[2])}; }
 };
 
 /// An item to build over: its box (its centre is the point the build sorts it by).

@@ -63,47 +63,6 @@ BasisRow basisWithDerivatives(const std::vector<double>& knots, int p, int span,
 
 namespace {
 
-/// Rows of Pascal's triangle up to 2 kMaxNurbsDegree (built once).
-const std::vector<std::vector<double>>& pascal() {
-  static const std::vector<std::vector<double>> rows = [] {
-    std::vector<std::vector<double>> t(64);
-    for (std::size_t m = 0; m < t.size(); ++m) {
-      t[m].assign(m + 1, 1.0);
-      for (std::size_t j = 1; j < m; ++j) t[m][j] = t[m - 1][j - 1] + t[m - 1][j];
-    }
-    return t;
-  }();
-  return rows;
-}
-
-}  // namespace
-
-void bernstein(int n, double t, std::array<std::array<double, 32>, 3>& out) {
-  // Power form B_i^m = C(m,i) t^i (1−t)^(m−i) for m = n, n−1, n−2: a few multiplications per value, which is
-  // what the Newton polish spends most of its time on. B' and B'' from the lower degrees.
-  std::array<double, 33> tp, sp;
-  tp[0] = sp[0] = 1.0;
-  const double s = 1.0 - t;
-  for (std::size_t k = 1; k <= static_cast<std::size_t>(n); ++k) {
-    tp[k] = tp[k - 1] * t;
-    sp[k] = sp[k - 1] * s;
-  }
-  const auto& C = pascal();
-  const auto B = [&](int m, int i) {
-    if (m < 0 || i < 0 || i > m) return 0.0;
-    const auto um = static_cast<std::size_t>(m), ui = static_cast<std::size_t>(i);
-    return C[um][ui] * tp[ui] * sp[um - ui];
-  };
-  for (int i = 0; i <= n; ++i) {
-    const auto ui = static_cast<std::size_t>(i);
-    out[0][ui] = B(n, i);
-    out[1][ui] = n * (B(n - 1, i - 1) - B(n - 1, i));
-    out[2][ui] = n * (n - 1) * (B(n - 2, i - 2) - 2 * B(n - 2, i - 1) + B(n - 2, i));
-  }
-}
-
-namespace {
-
 /// Boehm: inserts u once into the curve (knots, points) of degree p, using span k with t_k <= u <= t_{k+1}, t_k < t_{k+1}.
 void insertKnot(std::vector<double>& knots, std::vector<Eigen::Vector4d>& points, int p, int k, double u) {
   std::vector<Eigen::Vector4d> out(points.size() + 1);

@@ -2,6 +2,8 @@
 // knot insertion up to Bézier form. Internal to the NURBS model.
 #pragma once
 
+#include "nurbs/binomial.h"
+
 #include <Eigen/Core>
 
 #include <array>
@@ -21,8 +23,27 @@ int findSpan(const std::vector<double>& knots, int p, int n, double u);
 /// Non-zero basis functions of degree p at u and their first and second derivatives.
 BasisRow basisWithDerivatives(const std::vector<double>& knots, int p, int span, double u);
 
-/// Bernstein polynomials of degree n at t and their first two derivatives: out[k][i].
-void bernstein(int n, double t, std::array<std::array<double, 32>, 3>& out);
+/// Bernstein polynomials of degree n at t and their first two derivatives: out[k][i] (out: three rows of at
+/// least n + 1). Power form B_i^m = C(m,i) t^i (1−t)^(m−i) for m = n, n−1, n−2, a few multiplications per value
+/// (the Newton polish spends most of its time here); B' and B'' from the lower degrees. Inline, so a caller
+/// whose n is a constant gets the loops unrolled.
+template <class Rows>
+inline void bernstein(int n, double t, Rows& out) {
+  double tp[kMaxNurbsDegree + 1], sp[kMaxNurbsDegree + 1];
+  tp[0] = sp[0] = 1.0;
+  const double s = 1.0 - t;
+  for (int k = 1; k <= n; ++k) {
+    tp[k] = tp[k - 1] * t;
+    sp[k] = sp[k - 1] * s;
+  }
+  const auto B = [&](int m, int i) { return m < 0 || i < 0 || i > m ? 0.0 : binomial(m, i) * tp[i] * sp[m - i]; };
+  for (int i = 0; i <= n; ++i) {
+    const auto ui = static_cast<std::size_t>(i);
+    out[0][ui] = B(n, i);
+    out[1][ui] = n * (B(n - 1, i - 1) - B(n - 1, i));
+    out[2][ui] = n * (n - 1) * (B(n - 2, i - 2) - 2 * B(n - 2, i - 1) + B(n - 2, i));
+  }
+}
 
 /// A curve of homogeneous points cut into Bézier segments by knot insertion: segments[k] holds p + 1 points
 /// over [breaks[k], breaks[k+1]].

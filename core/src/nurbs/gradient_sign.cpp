@@ -62,13 +62,6 @@ double edgeSpread(const PatchNode& n, bool sEdge, int line) {
   return spread;
 }
 
-/// The line lies within `negligible` of its first point: a collapsed patch edge (a pole), every point of which
-/// is within that of the corner the search evaluates.
-bool collapsed(const PatchNode& n, bool sEdge, int line, double negligible) {
-  return edgeSpread(n, sEdge, line) <= negligible;
-}
-
-
 /// The sign of a numerator (grid of degree (a, b), `cols` = b + 1) over the node away from its collapsed edges
 /// (pole[0..3]: s = 0, s = 1, t = 0, t = 1): +1 or −1 when every coefficient off those edges' lines has it
 /// beyond `margin`. A line on a collapsed edge may fall short by κ (there the gradient vanishes with the
@@ -213,10 +206,13 @@ std::shared_ptr<const GradientForm> makeForm(const PatchNode& n) {
 }  // namespace
 
 const Eigen::Vector3d* collapsedCorner(const PatchNode& n, double negligible) {
-  if (n.s0 == 0 && collapsed(n, true, 0, negligible)) return &n.corners[0];
-  if (n.s1 == 1 && collapsed(n, true, n.net.degreeU, negligible)) return &n.corners[1];
-  if (n.t0 == 0 && collapsed(n, false, 0, negligible)) return &n.corners[0];
-  if (n.t1 == 1 && collapsed(n, false, n.net.degreeV, negligible)) return &n.corners[2];
+  // An edge whose net line lies within `negligible` of its first point is collapsed (a pole): every point of it
+  // is within that of the corner the search evaluates. The spreads are the node's form's (made once).
+  const double* spread = gradientForm(n).edgeSpread;
+  if (n.s0 == 0 && spread[0] <= negligible) return &n.corners[0];
+  if (n.s1 == 1 && spread[1] <= negligible) return &n.corners[1];
+  if (n.t0 == 0 && spread[2] <= negligible) return &n.corners[0];
+  if (n.t1 == 1 && spread[3] <= negligible) return &n.corners[2];
   return nullptr;
 }
 

@@ -4,6 +4,7 @@
 #include "nurbs/bspline.h"
 #include "nurbs/reparametrise.h"
 
+#include <array>
 #include <cmath>
 #include <string>
 
@@ -47,56 +48,42 @@ SurfaceDerivatives quotient(const Eigen::Vector4d& A, const Eigen::Vector4d& Au,
   return d;
 }
 
-/// C(m, i) for the small degrees below, exact.
-constexpr double choose(int m, int i) {
-  double c = 1;
-  for (int k = 1; k <= i; ++k) c = c * (m - k + 1) / k;
-  return c;
-}
-
-/// The Bernstein basis of degree N at t with its first two derivatives, bit for bit as nurbs::bernstein computes
-/// it (the same power form, products in the same order), for a degree known at compile time: the loops unroll.
-template <int N>
-void basisOfDegree(double t, double (&b0)[N + 1], double (&b1)[N + 1], double (&b2)[N + 1]) {
-  double tp[N + 1], sp[N + 1];
-  tp[0] = sp[0] = 1.0;
-  const double s = 1.0 - t;
-  for (int k = 1; k <= N; ++k) {
-    tp[k] = tp[k - 1] * t;
-    sp[k] = sp[k - 1] * s;
+/// The net's sum Σ_ij B_i(s) B_j(t) P_ij with its first and second partial derivatives, from the bases' values
+/// and derivatives (bu[k][i], bv[k][j]), then the rational quotient. Inline, so constant degrees unroll.
+template <class Rows>
+inline SurfaceDerivatives combine(const std::vector<Eigen::Vector4d>& net, int degreeU, int degreeV, const Rows& bu,
+                                  const Rows& bv) {
+  Eigen::Vector4d A = Eigen::Vector4d::Zero(), Au = A, Av = A, Auu = A, Auv = A, Avv = A;
+  for (int i = 0; i <= degreeU; ++i) {
+    Eigen::Vector4d row0 = Eigen::Vector4d::Zero(), row1 = row0, row2 = row0;  // sums over j of B_j^(k)(t) P_ij
+    for (int j = 0; j <= degreeV; ++j) {
+      const Eigen::Vector4d& P = net[static_cast<std::size_t>(i * (degreeV + 1) + j)];
+      const auto uj = static_cast<std::size_t>(j);
+      row0 += bv[0][uj] * P;
+      row1 += bv[1][uj] * P;
+      row2 += bv[2][uj] * P;
+    }
+    const auto ui = static_cast<std::size_t>(i);
+    A += bu[0][ui] * row0;
+    Av += bu[0][ui] * row1;
+    Avv += bu[0][ui] * row2;
+    Au += bu[1][ui] * row0;
+    Auv += bu[1][ui] * row1;
+    Auu += bu[2][ui] * row0;
   }
-  const auto B = [&](int m, int i) { return m < 0 || i < 0 || i > m ? 0.0 : choose(m, i) * tp[i] * sp[m - i]; };
-  for (int i = 0; i <= N; ++i) {
-    b0[i] = B(N, i);
-    b1[i] = N * (B(N - 1, i - 1) - B(N - 1, i));
-    b2[i] = N * (N - 1) * (B(N - 2, i - 2) - 2 * B(N - 2, i - 1) + B(N - 2, i));
-  }
+  return quotient(A, Au, Av, Auu, Auv, Avv);
 }
 
 /// RationalBezierPatch::derivatives for degrees (P, Q) known at compile time (the Newton polish evaluates
-/// patches of degree <= 3 in nearly every query; the general loops cost it about twice as much).
+/// patches of degree <= 3 in nearly every query; the general loops cost it about twice as much). The same
+/// operations in the same order as the general case, so the same bits.
 template <int P, int Q>
 SurfaceDerivatives derivativesOfDegree(const std::vector<Eigen::Vector4d>& net, double s, double t) {
-  double bu[3][P + 1], bv[3][Q + 1];
-  basisOfDegree<P>(s, bu[0], bu[1], bu[2]);
-  basisOfDegree<Q>(t, bv[0], bv[1], bv[2]);
-  Eigen::Vector4d A = Eigen::Vector4d::Zero(), Au = A, Av = A, Auu = A, Auv = A, Avv = A;
-  for (int i = 0; i <= P; ++i) {
-    Eigen::Vector4d row0 = Eigen::Vector4d::Zero(), row1 = row0, row2 = row0;
-    for (int j = 0; j <= Q; ++j) {
-      const Eigen::Vector4d& h = net[static_cast<std::size_t>(i * (Q + 1) + j)];
-      row0 += bv[0][j] * h;
-      row1 += bv[1][j] * h;
-      row2 += bv[2][j] * h;
-    }
-    A += bu[0][i] * row0;
-    Av += bu[0][i] * row1;
-    Avv += bu[0][i] * row2;
-    Au += bu[1][i] * row0;
-    Auv += bu[1][i] * row1;
-    Auu += bu[2][i] * row0;
-  }
-  return quotient(A, Au, Av, Auu, Auv, Avv);
+  constexpr int kRow = (P > Q ? P : Q) + 1;
+  std::array<std::array<double, kRow>, 3> bu, bv;
+  nurbs::bernstein(P, s, bu);
+  nurbs::bernstein(Q, t, bv);
+  return combine(net, P, Q, bu, bv);
 }
 
 }  // namespace
@@ -210,28 +197,10 @@ SurfaceDerivatives RationalBezierPatch::derivatives(double s, double t) const {
     case 3 * 4 + 3: return derivativesOfDegree<3, 3>(net, s, t);
     default: break;
   }
-  std::array<std::array<double, 32>, 3> bu, bv;
+  std::array<std::array<double, kMaxNurbsDegree + 1>, 3> bu, bv;
   nurbs::bernstein(degreeU, s, bu);
   nurbs::bernstein(degreeV, t, bv);
-  Eigen::Vector4d A = Eigen::Vector4d::Zero(), Au = A, Av = A, Auu = A, Auv = A, Avv = A;
-  for (int i = 0; i <= degreeU; ++i) {
-    Eigen::Vector4d row0 = Eigen::Vector4d::Zero(), row1 = row0, row2 = row0;  // sums over j of B_j^(k)(t) P_ij
-    for (int j = 0; j <= degreeV; ++j) {
-      const Eigen::Vector4d& P = at(i, j);
-      const auto uj = static_cast<std::size_t>(j);
-      row0 += bv[0][uj] * P;
-      row1 += bv[1][uj] * P;
-      row2 += bv[2][uj] * P;
-    }
-    const auto ui = static_cast<std::size_t>(i);
-    A += bu[0][ui] * row0;
-    Av += bu[0][ui] * row1;
-    Avv += bu[0][ui] * row2;
-    Au += bu[1][ui] * row0;
-    Auv += bu[1][ui] * row1;
-    Auu += bu[2][ui] * row0;
-  }
-  return quotient(A, Au, Av, Auu, Auv, Avv);
+  return combine(net, degreeU, degreeV, bu, bv);
 }
 
 Eigen::Vector3d RationalBezierPatch::evaluate(double s, double t) const { return derivatives(s, t).point; }

@@ -188,12 +188,9 @@ double dotDeviation(const IntervalVec3& a, const IntervalVec3& ax, const Interva
 double spectralBound(const Eigen::Matrix4d& m) { return std::min(m.rowwise().sum().maxCoeff(), m.norm()); }
 
 /// Over the box, where f = ½|S_A − S_B|² is convex: |S_A − S_B| >= sqrt(2 (f(z) + min over the box of g(z)·(y − z))),
-/// less rounding (each factor's coordinates to kRounding of `scale`).
-double tangentBound(const DifferenceNets& a, const DifferenceNets& b, const Eigen::Vector4d& lo,
-                    const Eigen::Vector4d& hi, const Eigen::Vector4d& z, double scale) {
-  Derivatives zA, zB;
-  if (!valuesAt(a, z[0], z[1], zA) || !valuesAt(b, z[2], z[3], zB)) return 0;
-  const Residual at{zA, zB};
+/// less rounding (each factor's coordinates to kRounding of `scale`); `at` holds the derivatives at z.
+double tangentBound(const Residual& at, const Eigen::Vector4d& lo, const Eigen::Vector4d& hi, const Eigen::Vector4d& z,
+                    double scale) {
   const Eigen::Vector3d r = mid(at({}));
   double f = 0.5 * r.squaredNorm();
   for (int c = 0; c < 4; ++c) {
@@ -274,18 +271,18 @@ ConvexityCertificate certifyConvexPair(const RationalBezierPatch& a, const Ratio
   // Convex: f(y) >= f(z) + g(z)·(y − z) on the box for every z in it. Newton's end is stationary only to the
   // resolution of its descent test, so z is x after up to two plain Newton steps (kept in the box).
   const double scale = centre.cwiseAbs().maxCoeff() + r.norm();
+  // Each point is evaluated once: its derivatives give both its bound and the next step's gradient.
   const Eigen::LDLT<Eigen::Matrix4d> solver(Hx);
-  double lower = tangentBound(netsA, netsB, lo, hi, x, scale);
-  Eigen::Vector4d z = x;
+  double lower = tangentBound(at, lo, hi, x, scale);
+  Eigen::Vector4d z = x, gz = g;
+  Derivatives zA, zB;
   for (int step = 0; step < 2; ++step) {
-    Derivatives zA, zB;
+    z = (z - solver.solve(gz)).cwiseMax(lo).cwiseMin(hi);
     if (!valuesAt(netsA, z[0], z[1], zA) || !valuesAt(netsB, z[2], z[3], zB)) break;
     const Residual atZ{zA, zB};
+    lower = std::max(lower, tangentBound(atZ, lo, hi, z, scale));
     const Eigen::Vector3d rz = mid(atZ({}));
-    Eigen::Vector4d gz;
     for (int c = 0; c < 4; ++c) gz[c] = rz.dot(mid(atZ({c})));
-    z = (z - solver.solve(gz)).cwiseMax(lo).cwiseMin(hi);
-    lower = std::max(lower, tangentBound(netsA, netsB, lo, hi, z, scale));
   }
   out.proved = true;
   out.lower = lower;

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <functional>
 #include <memory>
+#include <queue>
 
 namespace unidist::nurbs {
 namespace {
@@ -21,13 +22,6 @@ struct Open {
   const PatchNode* node;
   int certSplits = 0;  // levels split since an ancestor failed its certificate (below)
   bool operator>(const Open& o) const { return lower > o.lower; }
-};
-
-/// The buffers of one search (per query: core keeps no state between queries).
-struct Buffers {
-  std::vector<PatchHit> hits, polished;
-  std::vector<Open> open;  // a heap on `lower` (std::push_heap / pop_heap with greater: least on top)
-  std::vector<std::unique_ptr<PatchNode>> arena;  // nodes below the cached depth, freed after the search
 };
 
 }  // namespace
@@ -104,9 +98,7 @@ SearchResult minimise(const PatchForest& forest, const std::vector<RationalBezie
                       double tolerance, double tieTolerance, int skip) {
   SearchResult out;
   out.best.value = std::numeric_limits<double>::infinity();
-  Buffers buffers;
-  std::vector<PatchHit>& hits = buffers.hits;
-  std::vector<PatchHit>& polished = buffers.polished;
+  std::vector<PatchHit> hits, polished;
   double keep = std::numeric_limits<double>::infinity();  // rank below which a point ties with the best
   auto offer = [&](const PatchHit& h) {
     hits.push_back(h);
@@ -123,12 +115,8 @@ SearchResult minimise(const PatchForest& forest, const std::vector<RationalBezie
     }
   };
 
-  std::vector<Open>& open = buffers.open;
-  const auto push = [&open](const Open& o) {
-    open.push_back(o);
-    std::push_heap(open.begin(), open.end(), std::greater<Open>());
-  };
-  std::vector<std::unique_ptr<PatchNode>>& arena = buffers.arena;
+  std::priority_queue<Open, std::vector<Open>, std::greater<Open>> open;
+  std::vector<std::unique_ptr<PatchNode>> arena;  // nodes below the cached depth, freed after the search
   // Seed (nodal mapping): Newton from the parameters of the control point with the best objective value, so
   // that the bound prunes from the start. Only a start: the search below proves or improves it.
   const PatchNode* seedNode = nullptr;
@@ -154,12 +142,11 @@ SearchResult minimise(const PatchForest& forest, const std::vector<RationalBezie
     offer(polished.back());
   }
   for (const auto& root : forest.roots)
-    if (root->patch != skip) push({f.lowerBound(*root), root.get(), 0});
+    if (root->patch != skip) open.push({f.lowerBound(*root), root.get(), 0});
   while (!open.empty()) {
-    const Open top = open.front();
+    const Open top = open.top();
     if (top.lower >= out.best.value - tolerance) break;
-    std::pop_heap(open.begin(), open.end(), std::greater<Open>());
-    open.pop_back();
+    open.pop();
     const PatchNode& n = *top.node;
     if (++out.nodes > kNurbsSearchBudget) {
       out.exhausted = true;
@@ -212,7 +199,7 @@ SearchResult minimise(const PatchForest& forest, const std::vector<RationalBezie
     for (const PatchNode* c : forest.children(n, arena)) {
       offerCorners(*c);
       const double lb = f.lowerBound(*c);
-      if (lb < out.best.value - tolerance) push({lb, c, certSplits});
+      if (lb < out.best.value - tolerance) open.push({lb, c, certSplits});
     }
   }
   for (const PatchHit& h : hits)

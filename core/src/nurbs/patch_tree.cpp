@@ -156,25 +156,29 @@ Cone coneTowards(const Eigen::Vector3d& q, const Eigen::Vector3d& c, double r) {
   return out;
 }
 
-// With S the sum of the two angles, φ the angle between the axes and φ' = min(φ, π − φ) (cos φ' = |a·b|,
-// sin φ' = |a x b|, both accurate for small angles, where a cosine alone is not): some direction of a within b
-// or −b when φ' <= S, i.e. sin(φ' − S) <= 0; always when S >= π/2. The slack is in radians (sines of small
-// angles), so tiny cones stay tiny.
-bool meetsEitherWay(const Cone& a, const Cone& b) {
-  if (a.all || b.all) return true;
+namespace {
+
+/// With S the sum of the two cones' angles and an angle θ given by its cosine and sine: whether θ <= S, i.e.
+/// sin(θ − S) <= 0 (always when S >= π/2). The slack is in radians (sines of small angles), so tiny cones stay
+/// tiny.
+bool withinSumOfAngles(const Cone& a, const Cone& b, double cosTheta, double sinTheta) {
   const double cosSum = a.cosine * b.cosine - a.sine * b.sine, sinSum = a.sine * b.cosine + a.cosine * b.sine;
-  if (cosSum <= 0) return true;
-  const double c = std::abs(a.axis.dot(b.axis)), s = a.axis.cross(b.axis).norm();
-  return s * cosSum - c * sinSum <= kConeSlack;
+  return cosSum <= 0 || sinTheta * cosSum - cosTheta * sinSum <= kConeSlack;
 }
 
-// Some pair orthogonal when |φ − π/2| <= S, i.e. ψ = π/2 − φ' <= S (sin ψ = |a·b|, cos ψ = |a x b|).
+}  // namespace
+
+// φ the angle between the axes and φ' = min(φ, π − φ), with cos φ' = |a·b| and sin φ' = |a x b| (both accurate
+// for small angles, where a cosine alone is not): some direction of a within b or −b when φ' <= S.
+bool meetsEitherWay(const Cone& a, const Cone& b) {
+  if (a.all || b.all) return true;
+  return withinSumOfAngles(a, b, std::abs(a.axis.dot(b.axis)), a.axis.cross(b.axis).norm());
+}
+
+// Some pair orthogonal when |φ − π/2| <= S, i.e. ψ = π/2 − φ' <= S (cos ψ = |a x b|, sin ψ = |a·b|).
 bool canBeOrthogonal(const Cone& a, const Cone& b) {
   if (a.all || b.all) return true;
-  const double cosSum = a.cosine * b.cosine - a.sine * b.sine, sinSum = a.sine * b.cosine + a.cosine * b.sine;
-  if (cosSum <= 0) return true;
-  const double c = std::abs(a.axis.dot(b.axis)), s = a.axis.cross(b.axis).norm();
-  return c * cosSum - s * sinSum <= kConeSlack;
+  return withinSumOfAngles(a, b, a.axis.cross(b.axis).norm(), std::abs(a.axis.dot(b.axis)));
 }
 
 bool mayHoldCritical(const PatchNode& n, const Cone& towards, bool corners) {

@@ -76,8 +76,7 @@ class PosedVolumes {
   static constexpr std::uint32_t kNone = ~0u;
   Box turnBox(std::uint32_t j) const {
     const mesh::BvhNode& y = nodes_[j];
-    const Eigen::Vector3d yh(0.5 * (y.hi[0] - y.lo[0]), 0.5 * (y.hi[1] - y.lo[1]), 0.5 * (y.hi[2] - y.lo[2]));
-    return {R_ * y.center() + t_, absR_ * yh};
+    return {R_ * y.center() + t_, absR_ * y.halfExtent()};
   }
   // Per node, where its turned volumes are (kNone: not yet): only the volumes met are ever written, so making
   // the cache costs two index arrays, not an array of volumes (env/rob: 40–176 node pairs in all).

@@ -109,24 +109,30 @@ class PairSearch {
     Eigen::Vector3d pA, pB;
     bool tried = false;
   };
-  /// A box of two patches' parameters over which the squared distance is proved convex: every pair of nodes
-  /// inside it is bounded below by `lower` at once.
+  /// A box of two patches' parameters: A's s, t, then B's u, v.
+  struct ParamBox {
+    Eigen::Vector4d lo, hi;
+    bool contains(const Eigen::Vector4d& x) const {
+      return (x.array() >= lo.array()).all() && (x.array() <= hi.array()).all();
+    }
+    bool within(const ParamBox& o) const { return (lo.array() >= o.lo.array()).all() && (hi.array() <= o.hi.array()).all(); }
+  };
+  static ParamBox boxOf(const Node& na, const Node& nb) {
+    return {Eigen::Vector4d(na.s0, na.t0, nb.s0, nb.t0), Eigen::Vector4d(na.s1, na.t1, nb.s1, nb.t1)};
+  }
+  /// A box over which the squared distance is proved convex: every pair of nodes inside it is bounded below by
+  /// `lower` at once.
   struct ConvexRegion {
     int patchA, patchB;
-    Eigen::Vector4d lo, hi;
+    ParamBox box;
     double lower;
   };
-
-  static bool inBox(const Node& na, const Node& nb, const Eigen::Vector4d& lo, const Eigen::Vector4d& hi) {
-    return na.s0 >= lo[0] && na.s1 <= hi[0] && na.t0 >= lo[1] && na.t1 <= hi[1] && nb.s0 >= lo[2] &&
-           nb.s1 <= hi[2] && nb.t0 >= lo[3] && nb.t1 <= hi[3];
-  }
 
   /// A pair inside a certified region whose bound cannot beat the best is settled by that bound.
   bool settledByRegion(const Node& na, const Node& nb) {
     for (const ConvexRegion& r : regions_)
       if (r.patchA == na.patch && r.patchB == nb.patch && r.lower >= best_.value - 0.5 * tolerance_ &&
-          inBox(na, nb, r.lo, r.hi)) {
+          boxOf(na, nb).within(r.box)) {
         lowerOfPruned_ = std::min(lowerOfPruned_, r.lower);
         return true;
       }
@@ -139,9 +145,7 @@ class PairSearch {
     for (NewtonEnd& e : ends_) {
       if (e.tried || e.patchA != na.patch || e.patchB != nb.patch) continue;
       const Eigen::Vector4d& x = e.x;
-      if (x[0] < na.s0 || x[0] > na.s1 || x[1] < na.t0 || x[1] > na.t1 || x[2] < nb.s0 || x[2] > nb.s1 ||
-          x[3] < nb.t0 || x[3] > nb.t1)
-        continue;
+      if (!boxOf(na, nb).contains(x)) continue;
       e.tried = true;
       double size = kFirstRegion;
       for (int attempt = 0; attempt < kRegionAttempts; ++attempt) {
@@ -150,7 +154,7 @@ class PairSearch {
             nurbs::certifyConvexPair(a_.patches()[static_cast<std::size_t>(e.patchA)],
                                      b_.patches()[static_cast<std::size_t>(e.patchB)], X_AB_, lo, hi, x);
         if (c.proved) {
-          regions_.push_back({e.patchA, e.patchB, lo, hi, c.lower});
+          regions_.push_back({e.patchA, e.patchB, {lo, hi}, c.lower});
           break;
         }
         if (!std::isfinite(c.ratio)) break;  // not a strict minimum there: no box around it is convex
