@@ -87,6 +87,14 @@ TEST_P(DialContract, BoundsHoldAndCertifiedWithinTolerance) {
   RecordProperty("penetrating_cases", penetrating);
 }
 
+/// A penetration depth by the translation search is resolved to its final bisection step, a quarter of the
+/// tolerance, and its escape direction to the polish's stop (core/src/generic/translation_depth.cpp): within
+/// that step it lands wherever the search's path puts it, so a looser answer may be closer by luck. Separation
+/// answers are polished to rounding and get no such allowance.
+double depthStep(const dial::Case& c, const Answer& a) {
+  return std::string(a.result.method) == "translation-depth-bnb" ? 0.25 * a.relative * c.size : 0.0;
+}
+
 // Every family, NURBS ones included: their separation answers end with a local polish of the winning pair
 // (core/src/generic/pair_polish.h), so where the search stopped no longer shows in the error.
 TEST_P(DialMonotone, ErrorNeverGrowsAsToleranceTightens) {
@@ -95,7 +103,7 @@ TEST_P(DialMonotone, ErrorNeverGrowsAsToleranceTightens) {
     for (const Answer& a : answers) {
       SCOPED_TRACE(a.where);
       const double error = std::abs(a.result.distance - c.truth);
-      EXPECT_LE(error, std::max(looserError, rounding(c))) << "the true error grew as the tolerance tightened";
+      EXPECT_LE(error, std::max(looserError, rounding(c) + depthStep(c, a))) << "the true error grew as the tolerance tightened";
       looserError = error;
     }
   }

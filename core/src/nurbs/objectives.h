@@ -27,7 +27,7 @@ class PointObjective final : public Objective {
   double rank(const Eigen::Vector3d& p) const override { return (p - q_).squaredNorm(); }
   double rankOf(double value) const override { return value < 0 ? -1.0 : value * value; }
   double lowerBound(const PatchNode& n) const override {
-    return std::max(0.0, (q_ - n.ball.center).norm() - n.ball.radius);
+    return std::max((q_ - n.ball.center).norm() - n.ball.radius, boxDistance(n, q_));
   }
   double tightLowerBound(const PatchNode& n) const override {
     return std::max(lowerBound(n), bernsteinDistanceBound(n.net, q_, scratch_));
@@ -45,6 +45,30 @@ class PointObjective final : public Objective {
   bool provesNoMinimum(const PatchNode& n, double negligible) const override {
     return conesProveNoMinimum(n, criticalDirections(n.ball)) ||
            pointHoldsNoMinimum(n, q_, gradient_, negligible);
+  }
+  void startRanks(const StartSet& start, double* out) const override {
+    const double* x = start.px.data();
+    const double* y = start.py.data();
+    const double* z = start.pz.data();
+    const double qx = q_.x(), qy = q_.y(), qz = q_.z();
+    for (std::size_t k = 0; k < start.px.size(); ++k) {
+      const double dx = x[k] - qx, dy = y[k] - qy, dz = z[k] - qz;
+      out[k] = dx * dx + dy * dy + dz * dz;
+    }
+  }
+  // lowerBound() of each node where its ball says it may be below `below`.
+  void startBounds(const StartSet& start, double below, double* out) const override {
+    const double* x = start.cx.data();
+    const double* y = start.cy.data();
+    const double* z = start.cz.data();
+    const double* r = start.radius.data();
+    const double qx = q_.x(), qy = q_.y(), qz = q_.z();
+    for (std::size_t k = 0; k < start.cx.size(); ++k) {
+      const double dx = qx - x[k], dy = qy - y[k], dz = qz - z[k], reach = below + r[k];
+      out[k] = dx * dx + dy * dy + dz * dz < 1.0000001 * reach * reach ? 0.0 : std::numeric_limits<double>::infinity();
+    }
+    for (std::size_t k = 0; k < start.cx.size(); ++k)
+      if (out[k] == 0) out[k] = lowerBound(*start.nodes[k]);
   }
 
  private:

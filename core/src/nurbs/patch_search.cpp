@@ -1,5 +1,6 @@
 #include "nurbs/patch_search.h"
 #include "nurbs/gradient_sign.h"
+#include "nurbs/start_set.h"
 
 #include <algorithm>
 #include <cmath>
@@ -25,6 +26,17 @@ struct Open {
 };
 
 }  // namespace
+
+void Objective::startRanks(const StartSet& start, double* out) const {
+  for (std::size_t k = 0; k < start.points.size(); ++k) out[k] = rank(start.points[k]);
+}
+
+void Objective::startBounds(const StartSet& start, double below, double* out) const {
+  for (std::size_t k = 0; k < start.nodes.size(); ++k) {
+    const double lb = lowerBound(*start.nodes[k]);
+    out[k] = lb < below ? lb : std::numeric_limits<double>::infinity();
+  }
+}
 
 PatchHit polish(const RationalBezierPatch& patch, int index, const Objective& f, double s, double t) {
   PatchHit hit;
@@ -117,32 +129,32 @@ SearchResult minimise(const PatchForest& forest, const std::vector<RationalBezie
 
   std::priority_queue<Open, std::vector<Open>, std::greater<Open>> open;
   std::vector<std::unique_ptr<PatchNode>> arena;  // nodes below the cached depth, freed after the search
-  // Seed (nodal mapping): Newton from the parameters of the control point with the best objective value, so
-  // that the bound prunes from the start. Only a start: the search below proves or improves it.
-  const PatchNode* seedNode = nullptr;
-  int seedI = 0, seedJ = 0;
-  double seedValue = std::numeric_limits<double>::infinity();
-  for (const auto& root : forest.roots) {
-    if (root->patch == skip) continue;
-    offerCorners(*root);
-    for (int i = 0; i <= root->net.degreeU; ++i)
-      for (int j = 0; j <= root->net.degreeV; ++j) {
-        const double v = f.rank(root->net.point(i, j));
-        if (v < seedValue) {
-          seedValue = v;
-          seedNode = root.get();
-          seedI = i;
-          seedJ = j;
-        }
-      }
-  }
-  if (seedNode) {
-    polished.push_back(polish(patches[static_cast<std::size_t>(seedNode->patch)], seedNode->patch, f,
-                              static_cast<double>(seedI) / seedNode->net.degreeU, static_cast<double>(seedJ) / seedNode->net.degreeV));
+  // Seed: every point of the start grid is offered (patch corners among them), and Newton runs from the best,
+  // so that the bound prunes from the start. Only a start: the search below proves or improves it.
+  const StartSet& start = startSet(forest);
+  const std::size_t samples = start.samples.size();
+  std::vector<double> values(std::max(samples, start.nodes.size()));
+  f.startRanks(start, values.data());
+  if (skip >= 0)
+    for (std::size_t k = 0; k < samples; ++k)
+      if (start.samples[k].patch == skip) values[k] = std::numeric_limits<double>::infinity();
+  std::size_t seed = 0;
+  for (std::size_t k = 1; k < samples; ++k)
+    if (values[k] < values[seed]) seed = k;
+  if (samples > 0 && values[seed] < std::numeric_limits<double>::infinity()) {
+    const auto offerSample = [&](std::size_t k) {
+      offer({start.samples[k].patch, start.samples[k].s, start.samples[k].t, f.value(start.points[k]), start.points[k]});
+    };
+    offerSample(seed);
+    for (std::size_t k = 0; k < samples; ++k)
+      if (values[k] < keep && k != seed) offerSample(k);
+    const StartSet::Sample& at = start.samples[seed];
+    polished.push_back(polish(patches[static_cast<std::size_t>(at.patch)], at.patch, f, at.s, at.t));
     offer(polished.back());
   }
-  for (const auto& root : forest.roots)
-    if (root->patch != skip) open.push({f.lowerBound(*root), root.get(), 0});
+  f.startBounds(start, out.best.value - tolerance, values.data());
+  for (std::size_t k = 0; k < start.nodes.size(); ++k)
+    if (values[k] < out.best.value - tolerance && start.nodes[k]->patch != skip) open.push({values[k], start.nodes[k], 0});
   while (!open.empty()) {
     const Open top = open.top();
     if (top.lower >= out.best.value - tolerance) break;

@@ -8,6 +8,7 @@
 #pragma once
 
 #include "nurbs/patch_tree.h"
+#include "nurbs/start_set.h"
 
 #include <limits>
 #include <vector>
@@ -36,6 +37,11 @@ class Objective {
   /// Proved: no point of the node is a local minimum over its patch, patch corners and points within
   /// `negligible` of a corner aside (gradient_sign.h). Asked of a small flat node before its Newton run.
   virtual bool provesNoMinimum(const PatchNode& n, double negligible) const = 0;
+  /// rank() of every start sample, and lowerBound() of every start node where it is below `below` (+inf
+  /// elsewhere), into `out` (sized by the caller; start_set.h): one call for the whole set, which the point
+  /// query makes a vectorised loop.
+  virtual void startRanks(const StartSet& start, double* out) const;
+  virtual void startBounds(const StartSet& start, double below, double* out) const;
 };
 
 /// A point of a patch found by the search.

@@ -216,6 +216,51 @@ void tangentCones(const RationalBezierPatch& patch, Cone& cu, Cone& cv) {
   cv = coneOfVectors(derivativeCoefficients(patch, true));
 }
 
+namespace {
+
+/// The frame box of a node: third axis along its normal cone (or Su x Sv of the cone axes), first along Su.
+FrameBox frameBoxOf(const RationalBezierPatch& net, const BoundingSphere& ball, const Cone& cu, const Cone& cv,
+                    const Cone& normal) {
+  FrameBox box;
+  Eigen::Vector3d e3 = Eigen::Vector3d::UnitZ();
+  if (!normal.all) {
+    e3 = normal.axis;
+  } else if (!cu.all && !cv.all && cu.axis.cross(cv.axis).norm() > 1e-3) {
+    e3 = cu.axis.cross(cv.axis).normalized();
+  }
+  Eigen::Vector3d e1 = cu.all ? Eigen::Vector3d::UnitX() : cu.axis;
+  e1 -= e1.dot(e3) * e3;
+  if (!(e1.norm() > 1e-3)) e1 = e3.unitOrthogonal();
+  e1.normalize();
+  box.axes.row(0) = e1;
+  box.axes.row(1) = e3.cross(e1).normalized();
+  box.axes.row(2) = e3;
+  box.lo.setConstant(std::numeric_limits<double>::infinity());
+  box.hi.setConstant(-std::numeric_limits<double>::infinity());
+  for (const Eigen::Vector4d& h : net.net) {
+    const Eigen::Vector3d y = box.axes * (Eigen::Vector3d(h.head<3>() / h[3]) - ball.center);
+    box.lo = box.lo.cwiseMin(y);
+    box.hi = box.hi.cwiseMax(y);
+  }
+  // The net's rounding as the ball allows for it (256 ulps of the coordinates), and this computation's.
+  const double scale = ball.center.cwiseAbs().maxCoeff() + ball.radius;
+  const double widen = 256 * std::numeric_limits<double>::epsilon() * scale;
+  box.lo.array() -= widen;
+  box.hi.array() += widen;
+  return box;
+}
+
+}  // namespace
+
+double boxDistance(const PatchNode& n, const Eigen::Vector3d& q) {
+  const Eigen::Vector3d r = q - n.ball.center;
+  const Eigen::Vector3d y = n.box.axes * r;
+  const Eigen::Vector3d outside = (n.box.lo - y).cwiseMax(y - n.box.hi).cwiseMax(0.0);
+  // The frame is orthonormal to a few ulps and r and y are rounded: allow 1e-12 of |r| and ulps of q.
+  const double slack = 1e-12 * r.norm() + 8 * std::numeric_limits<double>::epsilon() * q.cwiseAbs().maxCoeff();
+  return std::max(0.0, outside.norm() - slack);
+}
+
 RationalBezierPatch subpatch(const RationalBezierPatch& patch, double s0, double s1, double t0, double t1) {
   RationalBezierPatch out = restrict(restrict(patch, 0, s0, s1), 1, t0, t1);
   const Eigen::Vector2d first = patch.surfaceParam(s0, t0), last = patch.surfaceParam(s1, t1);
@@ -241,6 +286,7 @@ std::unique_ptr<PatchNode> makeNode(RationalBezierPatch net, int patch, int dept
   n->ball = ballOfNet(n->net.net);
   tangentCones(n->net, n->cu, n->cv);
   n->normal = crossCone(n->cu, n->cv);
+  n->box = frameBoxOf(n->net, n->ball, n->cu, n->cv, n->normal);
   const int p = n->net.degreeU, q = n->net.degreeV;
   n->corners = {n->net.point(0, 0), n->net.point(p, 0), n->net.point(0, q), n->net.point(p, q)};
   return n;

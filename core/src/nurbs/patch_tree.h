@@ -15,6 +15,7 @@
 namespace unidist::nurbs {
 
 struct GradientForm;
+struct StartSet;
 
 /// A cone of directions {axis, half-angle}; `all` means every direction (no bound). The cosine and sine of the
 /// angle are kept so that the tests below need no trigonometry; they may leave out the angle's rounding slack,
@@ -52,11 +53,20 @@ void tangentCones(const RationalBezierPatch& patch, Cone& cu, Cone& cv);
 /// The subpatch over [s0,s1] x [t0,t1] of the local parameters.
 RationalBezierPatch subpatch(const RationalBezierPatch& patch, double s0, double s1, double t0, double t1);
 
+/// A box in an orthonormal frame around the ball's centre c holding the control points (so the subpatch),
+/// widened for rounding: {x : lo <= axes·(x − c) <= hi}. Across a nearly flat node (the frame's third axis
+/// is its normal) it is as thin as the node is curved, where the ball is as thick as the node is wide.
+struct FrameBox {
+  Eigen::Matrix3d axes = Eigen::Matrix3d::Identity();  // rows: the frame's unit vectors
+  Eigen::Vector3d lo = Eigen::Vector3d::Zero(), hi = Eigen::Vector3d::Zero();
+};
+
 struct PatchNode {
   RationalBezierPatch net;             // the subpatch, local parameters of its own
   int patch = 0, depth = 0;
   double s0 = 0, s1 = 1, t0 = 0, t1 = 1;  // its box in the patch's local parameters
   BoundingSphere ball;
+  FrameBox box;
   Cone cu, cv, normal;
   std::array<Eigen::Vector3d, 4> corners;  // surface points at (s0,t0), (s1,t0), (s0,t1), (s1,t1)
 
@@ -67,6 +77,9 @@ struct PatchNode {
 };
 
 constexpr int kCachedDepth = 7;
+
+/// Proved: |q − x| >= this for every point x of the node's subpatch (the distance from q to its frame box).
+double boxDistance(const PatchNode& n, const Eigen::Vector3d& q);
 
 /// Can the node hold a point where some direction of `towards` is normal to the surface (an interior critical
 /// point), or orthogonal to the tangent along a patch edge the node touches (an edge critical point)? With
@@ -81,6 +94,8 @@ void controlPoints(const PatchNode& n, const Eigen::Isometry3d& X, std::vector<E
 struct PatchForest {
   std::vector<std::unique_ptr<PatchNode>> roots;
   mutable std::atomic<std::size_t> nodes{0}, bytes{0};
+  mutable std::once_flag startOnce;  // the search's starting cut (start_set.h), made on first use
+  mutable std::shared_ptr<const StartSet> start;
 
   explicit PatchForest(const std::vector<RationalBezierPatch>& patches);
   /// The four children of n (quadrants in u-major order). Cached ones are built once; deeper ones go to arena.

@@ -1,0 +1,59 @@
+#include "nurbs/start_set.h"
+
+namespace unidist::nurbs {
+namespace {
+
+std::shared_ptr<const StartSet> makeStartSet(const PatchForest& forest) {
+  auto out = std::make_shared<StartSet>();
+  std::size_t count = forest.roots.size();
+  while (out->depth < kCachedDepth && 4 * count <= kMaxStartNodes) {
+    ++out->depth;
+    count *= 4;
+  }
+  const int cells = 1 << out->depth, side = cells + 1;
+  std::vector<std::unique_ptr<PatchNode>> arena;  // stays empty: the cut is within the cached depth
+  for (const auto& root : forest.roots) {
+    const std::size_t first = out->samples.size();
+    for (int i = 0; i < side; ++i)
+      for (int j = 0; j < side; ++j) out->samples.push_back({root->patch, double(i) / cells, double(j) / cells});
+    out->points.resize(out->samples.size());
+    // Depth first down to the cut; every corner of every cut node is a grid point.
+    std::vector<const PatchNode*> stack{root.get()};
+    while (!stack.empty()) {
+      const PatchNode* n = stack.back();
+      stack.pop_back();
+      if (n->depth < out->depth) {
+        for (const PatchNode* c : forest.children(*n, arena)) stack.push_back(c);
+        continue;
+      }
+      out->nodes.push_back(n);
+      const int i0 = static_cast<int>(n->s0 * cells + 0.5), i1 = static_cast<int>(n->s1 * cells + 0.5);
+      const int j0 = static_cast<int>(n->t0 * cells + 0.5), j1 = static_cast<int>(n->t1 * cells + 0.5);
+      const int at[4] = {i0 * side + j0, i1 * side + j0, i0 * side + j1, i1 * side + j1};
+      for (int k = 0; k < 4; ++k) out->points[first + static_cast<std::size_t>(at[k])] = n->corners[static_cast<std::size_t>(k)];
+    }
+  }
+  for (const Eigen::Vector3d& p : out->points) {
+    out->px.push_back(p.x());
+    out->py.push_back(p.y());
+    out->pz.push_back(p.z());
+  }
+  for (const PatchNode* n : out->nodes) {
+    out->cx.push_back(n->ball.center.x());
+    out->cy.push_back(n->ball.center.y());
+    out->cz.push_back(n->ball.center.z());
+    out->radius.push_back(n->ball.radius);
+  }
+  forest.bytes += out->samples.size() * (sizeof(StartSet::Sample) + 4 * sizeof(double)) +
+                  out->nodes.size() * (sizeof(const PatchNode*) + 4 * sizeof(double));
+  return out;
+}
+
+}  // namespace
+
+const StartSet& startSet(const PatchForest& forest) {
+  std::call_once(forest.startOnce, [&forest] { forest.start = makeStartSet(forest); });
+  return *forest.start;
+}
+
+}  // namespace unidist::nurbs
