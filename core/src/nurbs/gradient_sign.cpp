@@ -222,27 +222,27 @@ const GradientForm& gradientForm(const PatchNode& n) {
 }
 
 /// The coefficients c_k = p_k − r·q_k into out (p empty: 0 − r·q_k); +1 or −1 when every one lies beyond
-/// `margin` with that sign, else 0.
+/// `margin` with that sign, else 0. Eigen's array expressions keep both passes vectorised; the callers check
+/// that |p| + |r|·|q| stays finite (boundedSizes), so no coefficient is NaN.
 int combine(const std::vector<double>& p, const Eigen::Vector3d& r, const std::array<std::vector<double>, 3>& q,
             double margin, std::vector<double>& out) {
-  const std::size_t count = q[0].size();
-  out.resize(count);
-  const double *x = q[0].data(), *y = q[1].data(), *z = q[2].data();
-  double* c = out.data();
-  const double rx = r.x(), ry = r.y(), rz = r.z();
+  using Coefficients = Eigen::Map<const Eigen::ArrayXd>;
+  const Eigen::Index count = static_cast<Eigen::Index>(q[0].size());
+  out.resize(q[0].size());
+  Eigen::Map<Eigen::ArrayXd> c(out.data(), count);
+  const auto along = r.x() * Coefficients(q[0].data(), count) + r.y() * Coefficients(q[1].data(), count) +
+                     r.z() * Coefficients(q[2].data(), count);
   if (p.empty()) {
-    for (std::size_t k = 0; k < count; ++k) c[k] = -(rx * x[k] + ry * y[k] + rz * z[k]);
+    c = -along;
   } else {
-    const double* pk = p.data();
-    for (std::size_t k = 0; k < count; ++k) c[k] = pk[k] - (rx * x[k] + ry * y[k] + rz * z[k]);
+    c = Coefficients(p.data(), count) - along;
   }
-  std::size_t above = 0, below = 0;
-  for (std::size_t k = 0; k < count; ++k) {
-    above += c[k] > margin;
-    below += c[k] < -margin;
-  }
-  return above == count ? 1 : (below == count ? -1 : 0);
+  if (c.minCoeff() > margin) return 1;
+  return c.maxCoeff() < -margin ? -1 : 0;
 }
+
+/// Every coefficient p_k − r·q_k is finite: the form's size bounds hold |p_k| and |q_k|.
+bool boundedSizes(const GradientForm& F, double r) { return F.sizeP + std::sqrt(3.0) * r * F.sizeQ < 1e300; }
 
 /// No patch edge in the node: only interior minima, which need both components zero.
 bool interior(const PatchNode& n) { return n.s0 > 0 && n.s1 < 1 && n.t0 > 0 && n.t1 < 1; }
@@ -250,6 +250,7 @@ bool interior(const PatchNode& n) { return n.s0 > 0 && n.s1 < 1 && n.t0 > 0 && n
 bool pointHoldsNoMinimum(const PatchNode& n, const Eigen::Vector3d& q, GradientScratch& g, double negligible) {
   const GradientForm& F = gradientForm(n);
   const Eigen::Vector3d r = q - F.centre;
+  if (!boundedSizes(F, r.norm())) return false;
   // r itself is rounded by an ulp of the larger of q and the centre.
   const double slack = 2 * kEps * (q.cwiseAbs().maxCoeff() + F.centre.cwiseAbs().maxCoeff()) * std::sqrt(3.0);
   const double margin = F.errP + r.norm() * F.errQ + slack * F.sizeQ + 8 * kEps * (F.sizeP + r.norm() * F.sizeQ);
@@ -263,6 +264,7 @@ bool pointHoldsNoMinimum(const PatchNode& n, const Eigen::Vector3d& q, GradientS
 
 bool supportHoldsNoMinimum(const PatchNode& n, const Eigen::Vector3d& d, GradientScratch& g, double negligible) {
   const GradientForm& F = gradientForm(n);
+  if (!boundedSizes(F, d.norm())) return false;
   const double margin = F.errQ + 8 * kEps * F.sizeQ;
   const std::vector<double> none;
   const int signs[2] = {combine(none, d, F.qu, margin, g.u), combine(none, d, F.qv, margin, g.v)};

@@ -29,6 +29,10 @@ class PointObjective final : public Objective {
   double lowerBound(const PatchNode& n) const override {
     return std::max((q_ - n.ball.center).norm() - n.ball.radius, boxDistance(n, q_));
   }
+  double lowerBound(const PatchNode& n, double enough) const override {
+    const double byBall = (q_ - n.ball.center).norm() - n.ball.radius;
+    return byBall >= enough ? byBall : std::max(byBall, boxDistance(n, q_));
+  }
   double tightLowerBound(const PatchNode& n) const override {
     return std::max(lowerBound(n), bernsteinDistanceBound(n.net, q_, scratch_));
   }

@@ -3,9 +3,12 @@
 #include "nurbs/start_set.h"
 
 #include <algorithm>
+#include <array>
+#include <cstddef>
 #include <cmath>
 #include <functional>
 #include <memory>
+#include <memory_resource>
 #include <queue>
 
 namespace unidist::nurbs {
@@ -17,6 +20,9 @@ constexpr double kLeafFraction = 0.5;  // leaf: radius below this fraction of th
 constexpr double kLeafAngle = 0.5;    // ...and a normal cone narrower than this (rad): Newton converges there
 constexpr int kNewtonSteps = 60;
 constexpr int kCertSplits = 3;        // levels a piece that fails its certificate is split before it is trusted
+// The search's buffers: sized for an ordinary query (tens of nodes open, a few hits and runs).
+constexpr std::size_t kStackBytes = 12 * 1024;
+constexpr std::size_t kExpectedHits = 32, kExpectedRuns = 8, kExpectedOpen = 128;
 
 struct Open {
   double lower;
@@ -110,7 +116,12 @@ SearchResult minimise(const PatchForest& forest, const std::vector<RationalBezie
                       double tolerance, double tieTolerance, int skip) {
   SearchResult out;
   out.best.value = std::numeric_limits<double>::infinity();
-  std::vector<PatchHit> hits, polished;
+  // The query's buffers on the stack, spilling to the heap only in a long search.
+  std::array<std::byte, kStackBytes> stack;
+  std::pmr::monotonic_buffer_resource memory(stack.data(), stack.size());
+  std::pmr::vector<PatchHit> hits(&memory), polished(&memory);
+  hits.reserve(kExpectedHits);
+  polished.reserve(kExpectedRuns);
   double keep = std::numeric_limits<double>::infinity();  // rank below which a point ties with the best
   auto offer = [&](const PatchHit& h) {
     hits.push_back(h);
@@ -127,13 +138,15 @@ SearchResult minimise(const PatchForest& forest, const std::vector<RationalBezie
     }
   };
 
-  std::priority_queue<Open, std::vector<Open>, std::greater<Open>> open;
+  std::pmr::vector<Open> heap(&memory);
+  heap.reserve(kExpectedOpen);
+  std::priority_queue<Open, std::pmr::vector<Open>, std::greater<Open>> open(std::greater<Open>(), std::move(heap));
   std::vector<std::unique_ptr<PatchNode>> arena;  // nodes below the cached depth, freed after the search
   // Seed: every point of the start grid is offered (patch corners among them), and Newton runs from the best,
   // so that the bound prunes from the start. Only a start: the search below proves or improves it.
   const StartSet& start = startSet(forest);
   const std::size_t samples = start.samples.size();
-  std::vector<double> values(std::max(samples, start.nodes.size()));
+  std::pmr::vector<double> values(std::max(samples, start.nodes.size()), &memory);
   f.startRanks(start, values.data());
   if (skip >= 0)
     for (std::size_t k = 0; k < samples; ++k)
@@ -209,8 +222,10 @@ SearchResult minimise(const PatchForest& forest, const std::vector<RationalBezie
     }
     const int certSplits = flat ? top.certSplits + 1 : top.certSplits;
     for (const PatchNode* c : forest.children(n, arena)) {
+      // A child bounded above the best by more than the tie tolerance holds neither a better point nor a tie.
+      const double lb = f.lowerBound(*c, out.best.value + tieTolerance);
+      if (lb > out.best.value + tieTolerance) continue;
       offerCorners(*c);
-      const double lb = f.lowerBound(*c);
       if (lb < out.best.value - tolerance) open.push({lb, c, certSplits});
     }
   }

@@ -26,6 +26,11 @@ class Objective {
   virtual double rankOf(double value) const { return value; }
   /// Proved: value >= this on the node's subpatch.
   virtual double lowerBound(const PatchNode& n) const = 0;
+  /// lowerBound, or a cheaper proved bound when that one is already >= `enough` (the node is then of no use).
+  virtual double lowerBound(const PatchNode& n, double enough) const {
+    (void)enough;
+    return lowerBound(n);
+  }
   /// A tighter proved bound, dearer: asked only of a node the search would otherwise split.
   virtual double tightLowerBound(const PatchNode& n) const { return lowerBound(n); }
   /// Directions an interior critical point's normal must be parallel to (for the point query: q − S).
