@@ -3,6 +3,7 @@
 #include "adapters/error_of.h"
 #include "nurbs/gradient_sign.h"
 #include "nurbs/patch_tree.h"
+#include "nurbs/start_set.h"
 #include "nurbs_fixtures.h"
 #include "nurbs_oracle.h"
 
@@ -170,6 +171,36 @@ void checkNodesBySampling(const NurbsModel& m, int depth) {
   for (const auto& root : m.forest().roots) visit(*root);
 }
 
+// The patch tree's memory report counts everything the queries cached: the nodes, the start set and the
+// certificates' Bernstein forms (made on first need per node; deeper nodes' die with their query).
+TEST(NurbsTree, MemoryReportCountsNodesStartSetAndForms) {
+  const auto m = model(torusSurface(), true);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> U(-1.6, 1.6);
+  for (int k = 0; k < 200; ++k) m->closestPoint(Vec(U(rng), U(rng), 0.4 * U(rng)));
+  std::size_t nodes = 0, forms = 0, formCount = 0;
+  std::function<void(const nurbs::PatchNode&)> visit = [&](const nurbs::PatchNode& n) {
+    nodes += sizeof(nurbs::PatchNode) + (n.depth > 0 ? n.net.net.size() * sizeof(Eigen::Vector4d) : 0);
+    if (n.gradient) {
+      ++formCount;
+      std::size_t doubles = n.gradient->pu.capacity() + n.gradient->pv.capacity();
+      for (int c = 0; c < 3; ++c) doubles += n.gradient->qu[c].capacity() + n.gradient->qv[c].capacity();
+      forms += sizeof(nurbs::GradientForm) + doubles * sizeof(double);
+    }
+    for (const auto& c : n.cached)
+      if (c) visit(*c);
+  };
+  for (const auto& root : m->forest().roots) visit(*root);
+  const nurbs::StartSet& start = nurbs::startSet(m->forest());
+  const std::size_t startBytes = start.samples.size() * (sizeof(nurbs::StartSet::Sample) + 4 * sizeof(double)) +
+                                 start.nodes.size() * (sizeof(const nurbs::PatchNode*) + 4 * sizeof(double));
+  EXPECT_GT(formCount, 0u);
+  std::size_t reported = 0;
+  for (const StructureReport& r : m->structures())
+    if (r.name == "patch-tree") reported = r.bytes;
+  EXPECT_EQ(reported, nodes + startBytes + forms);
+}
+
 TEST(NurbsTree, BallsAndConesAreConservative) {
   checkNodesBySampling(*model(sphereSurface(), true), 3);
   checkNodesBySampling(*model(torusSurface(), true), 3);
@@ -191,7 +222,8 @@ void checkCertificatesBySampling(const NurbsModel& m, int depth, double spread) 
       const Vec q(U(rng), U(rng), U(rng));
       const bool point = k % 2 == 0;  // else the support objective along q
       ++asked;
-      if (!(point ? nurbs::pointHoldsNoMinimum(n, q, scratch, 1e-13) : nurbs::supportHoldsNoMinimum(n, q.normalized(), scratch, 1e-13)))
+      if (!(point ? nurbs::pointHoldsNoMinimum(n, m.forest(), q, scratch, 1e-13)
+                    : nurbs::supportHoldsNoMinimum(n, m.forest(), q.normalized(), scratch, 1e-13)))
         continue;
       ++proved;
       int signS = 0, signT = 0;

@@ -203,12 +203,18 @@ std::shared_ptr<const GradientForm> makeForm(const PatchNode& n) {
   return F;
 }
 
+std::size_t formBytes(const GradientForm& F) {
+  std::size_t doubles = F.pu.capacity() + F.pv.capacity();
+  for (int c = 0; c < 3; ++c) doubles += F.qu[static_cast<std::size_t>(c)].capacity() + F.qv[static_cast<std::size_t>(c)].capacity();
+  return sizeof(GradientForm) + doubles * sizeof(double);
+}
+
 }  // namespace
 
-const Eigen::Vector3d* collapsedCorner(const PatchNode& n, double negligible) {
+const Eigen::Vector3d* collapsedCorner(const PatchNode& n, const PatchForest& forest, double negligible) {
   // An edge whose net line lies within `negligible` of its first point is collapsed (a pole): every point of it
   // is within that of the corner the search evaluates. The spreads are the node's form's (made once).
-  const double* spread = gradientForm(n).edgeSpread;
+  const double* spread = gradientForm(n, forest).edgeSpread;
   if (n.s0 == 0 && spread[0] <= negligible) return &n.corners[0];
   if (n.s1 == 1 && spread[1] <= negligible) return &n.corners[1];
   if (n.t0 == 0 && spread[2] <= negligible) return &n.corners[0];
@@ -216,8 +222,11 @@ const Eigen::Vector3d* collapsedCorner(const PatchNode& n, double negligible) {
   return nullptr;
 }
 
-const GradientForm& gradientForm(const PatchNode& n) {
-  std::call_once(n.gradientOnce, [&n] { n.gradient = makeForm(n); });
+const GradientForm& gradientForm(const PatchNode& n, const PatchForest& forest) {
+  std::call_once(n.gradientOnce, [&n, &forest] {
+    n.gradient = makeForm(n);
+    if (n.depth <= kCachedDepth) forest.bytes += formBytes(*n.gradient);  // deeper nodes die with their query
+  });
   return *n.gradient;
 }
 
@@ -247,8 +256,9 @@ bool boundedSizes(const GradientForm& F, double r) { return F.sizeP + std::sqrt(
 /// No patch edge in the node: only interior minima, which need both components zero.
 bool interior(const PatchNode& n) { return n.s0 > 0 && n.s1 < 1 && n.t0 > 0 && n.t1 < 1; }
 
-bool pointHoldsNoMinimum(const PatchNode& n, const Eigen::Vector3d& q, GradientScratch& g, double negligible) {
-  const GradientForm& F = gradientForm(n);
+bool pointHoldsNoMinimum(const PatchNode& n, const PatchForest& forest, const Eigen::Vector3d& q, GradientScratch& g,
+                         double negligible) {
+  const GradientForm& F = gradientForm(n, forest);
   const Eigen::Vector3d r = q - F.centre;
   if (!boundedSizes(F, r.norm())) return false;
   // r itself is rounded by an ulp of the larger of q and the centre.
@@ -262,8 +272,9 @@ bool pointHoldsNoMinimum(const PatchNode& n, const Eigen::Vector3d& q, GradientS
   return noMinimum(F, g.u, g.v, signs, n, margin, negligible);
 }
 
-bool supportHoldsNoMinimum(const PatchNode& n, const Eigen::Vector3d& d, GradientScratch& g, double negligible) {
-  const GradientForm& F = gradientForm(n);
+bool supportHoldsNoMinimum(const PatchNode& n, const PatchForest& forest, const Eigen::Vector3d& d, GradientScratch& g,
+                           double negligible) {
+  const GradientForm& F = gradientForm(n, forest);
   if (!boundedSizes(F, d.norm())) return false;
   const double margin = F.errQ + 8 * kEps * F.sizeQ;
   const std::vector<double> none;

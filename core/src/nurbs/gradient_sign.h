@@ -37,10 +37,11 @@ struct GradientForm {
 };
 
 /// The point of a patch edge collapsed to within `negligible` (a pole) that the node touches, or null.
-const Eigen::Vector3d* collapsedCorner(const PatchNode& n, double negligible);
+const Eigen::Vector3d* collapsedCorner(const PatchNode& n, const PatchForest& forest, double negligible);
 
-/// The node's form, made on first call (once per node, thread-safe).
-const GradientForm& gradientForm(const PatchNode& n);
+/// The node's form, made on first call (once per node, thread-safe); a cached node's form is counted in the
+/// forest's bytes.
+const GradientForm& gradientForm(const PatchNode& n, const PatchForest& forest);
 
 /// Buffers of the proofs, kept by the caller across the nodes of one query.
 struct GradientScratch {
@@ -49,8 +50,10 @@ struct GradientScratch {
 
 /// Proved: no point of the node is a local minimum of |S − q| over the node's patch, except patch corners and
 /// points of a patch edge collapsed to within `negligible` (a pole: there every point is within it of a corner).
-bool pointHoldsNoMinimum(const PatchNode& n, const Eigen::Vector3d& q, GradientScratch& g, double negligible);
+bool pointHoldsNoMinimum(const PatchNode& n, const PatchForest& forest, const Eigen::Vector3d& q, GradientScratch& g,
+                         double negligible);
 /// The same for −d·S (d a unit vector).
-bool supportHoldsNoMinimum(const PatchNode& n, const Eigen::Vector3d& d, GradientScratch& g, double negligible);
+bool supportHoldsNoMinimum(const PatchNode& n, const PatchForest& forest, const Eigen::Vector3d& d, GradientScratch& g,
+                           double negligible);
 
 }  // namespace unidist::nurbs

@@ -46,9 +46,9 @@ class PointObjective final : public Objective {
   // Near the surface the distance is convex over a small piece whatever q, so pieces of a fixed small size
   // are polished too (otherwise a query on the surface would subdivide down to the tolerance).
   double leafScale(const BoundingSphere& b) const override { return std::max((q_ - b.center).norm(), floor_); }
-  bool provesNoMinimum(const PatchNode& n, double negligible) const override {
+  bool provesNoMinimum(const PatchNode& n, const PatchForest& forest, double negligible) const override {
     return conesProveNoMinimum(n, criticalDirections(n.ball)) ||
-           pointHoldsNoMinimum(n, q_, gradient_, negligible);
+           pointHoldsNoMinimum(n, forest, q_, gradient_, negligible);
   }
   void startRanks(const StartSet& start, double* out) const override {
     const double* x = start.px.data();
@@ -101,9 +101,9 @@ class SupportObjective final : public Objective {
     H << -d_.dot(s.duu), -d_.dot(s.duv), -d_.dot(s.duv), -d_.dot(s.dvv);
   }
   double leafScale(const BoundingSphere&) const override { return size_; }
-  bool provesNoMinimum(const PatchNode& n, double negligible) const override {
+  bool provesNoMinimum(const PatchNode& n, const PatchForest& forest, double negligible) const override {
     return conesProveNoMinimum(n, criticalDirections(n.ball)) ||
-           supportHoldsNoMinimum(n, d_, gradient_, negligible);
+           supportHoldsNoMinimum(n, forest, d_, gradient_, negligible);
   }
 
  private:

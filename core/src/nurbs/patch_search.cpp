@@ -201,7 +201,7 @@ SearchResult minimise(const PatchForest& forest, const std::vector<RationalBezie
                            [&](const Eigen::Vector3d& c) { return (c - m.point).norm() <= tolerance; });
       };
       if (flat && std::any_of(polished.begin(), polished.end(), inside)) continue;
-      if (flat && f.provesNoMinimum(n, 0.5 * tolerance)) continue;
+      if (flat && f.provesNoMinimum(n, forest, 0.5 * tolerance)) continue;
       const RationalBezierPatch& patch = patches[static_cast<std::size_t>(n.patch)];
       polished.push_back(polish(patch, n.patch, f, 0.5 * (n.s0 + n.s1), 0.5 * (n.t0 + n.t1)));
       offer(polished.back());
@@ -214,7 +214,7 @@ SearchResult minimise(const PatchForest& forest, const std::vector<RationalBezie
       // leaf was before, and counted (SearchResult::unproved), after kCertSplits levels, or at once when it
       // touches a pole its run went to (the pieces around a pole double with every level).
       if (f.tightLowerBound(n) >= out.best.value - tolerance) continue;
-      const Eigen::Vector3d* pole = collapsedCorner(n, 0.5 * tolerance);
+      const Eigen::Vector3d* pole = collapsedCorner(n, forest, 0.5 * tolerance);
       if (top.certSplits >= kCertSplits || (pole && (*pole - polished.back().point).norm() <= n.ball.radius)) {
         ++out.unproved;
         continue;

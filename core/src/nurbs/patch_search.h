@@ -41,7 +41,7 @@ class Objective {
   virtual double leafScale(const BoundingSphere& b) const = 0;
   /// Proved: no point of the node is a local minimum over its patch, patch corners and points within
   /// `negligible` of a corner aside (gradient_sign.h). Asked of a small flat node before its Newton run.
-  virtual bool provesNoMinimum(const PatchNode& n, double negligible) const = 0;
+  virtual bool provesNoMinimum(const PatchNode& n, const PatchForest& forest, double negligible) const = 0;
   /// rank() of every start sample, and lowerBound() of every start node where it is below `below` (+inf
   /// elsewhere), into `out` (sized by the caller; start_set.h): one call for the whole set, which the point
   /// query makes a vectorised loop.
