@@ -151,16 +151,24 @@ SearchResult minimise(const PatchForest& forest, const std::vector<RationalBezie
   if (skip >= 0)
     for (std::size_t k = 0; k < samples; ++k)
       if (start.samples[k].patch == skip) values[k] = std::numeric_limits<double>::infinity();
+  // Plain locals in the loops (the offers write `keep` and the buffers through references the compiler must
+  // otherwise reload).
+  const double* ranks = values.data();
   std::size_t seed = 0;
+  double least = samples > 0 ? ranks[0] : std::numeric_limits<double>::infinity();
   for (std::size_t k = 1; k < samples; ++k)
-    if (values[k] < values[seed]) seed = k;
-  if (samples > 0 && values[seed] < std::numeric_limits<double>::infinity()) {
+    if (ranks[k] < least) {
+      least = ranks[k];
+      seed = k;
+    }
+  if (least < std::numeric_limits<double>::infinity()) {
     const auto offerSample = [&](std::size_t k) {
       offer({start.samples[k].patch, start.samples[k].s, start.samples[k].t, f.value(start.points[k]), start.points[k]});
     };
     offerSample(seed);
+    const double ties = keep;  // no other sample is better than the seed, so the threshold stays
     for (std::size_t k = 0; k < samples; ++k)
-      if (values[k] < keep && k != seed) offerSample(k);
+      if (ranks[k] < ties && k != seed) offerSample(k);
     const StartSet::Sample& at = start.samples[seed];
     polished.push_back(polish(patches[static_cast<std::size_t>(at.patch)], at.patch, f, at.s, at.t));
     offer(polished.back());
