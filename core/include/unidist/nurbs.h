@@ -58,6 +58,7 @@ constexpr int kNurbsSearchBudget = 20000;
 
 namespace nurbs {
 struct PatchForest;
+struct PatchHit;
 }
 namespace lod {
 class StandInCache;
@@ -173,6 +174,7 @@ class NurbsModel final : public Model {
   std::array<bool, 2> findPeriodic(const NurbsSurface& s) const;
   double enclosedVolume() const;
   std::size_t patchTreeBytes() const;  // the cached subdivision tree so far
+  Eigen::Vector3d normalAt(const nurbs::PatchHit& h) const;  // the search's normal where it has one
 
   std::vector<NurbsSurface> surfaces_;
   std::vector<RationalBezierPatch> patches_;

@@ -119,12 +119,14 @@ Eigen::Vector3d NurbsModel::patchNormal(int k, double s, double t) const {
   // At a collapsed edge (pole) Su x Sv vanishes: take the limit from just inside the patch.
   for (double nudge : {0.0, 1e-9, 1e-7, 1e-5, 1e-3}) {
     const double sn = s + nudge * (s < 0.5 ? 1 : -1), tn = t + nudge * (t < 0.5 ? 1 : -1);
-    const SurfaceDerivatives d = P.derivatives(sn, tn);
-    const Eigen::Vector3d n = d.du.cross(d.dv);
-    const double scale = d.du.norm() * d.dv.norm();
-    if (n.norm() > 1e-10 * scale && scale > 0) return orientation_ * n.normalized();
+    Eigen::Vector3d n;
+    if (nurbs::unitNormal(P.derivatives(sn, tn), n)) return orientation_ * n;
   }
   return Eigen::Vector3d::UnitZ();  // a patch degenerate everywhere near (s, t): any unit vector
+}
+
+Eigen::Vector3d NurbsModel::normalAt(const nurbs::PatchHit& h) const {
+  return h.normal.squaredNorm() > 0 ? Eigen::Vector3d(orientation_ * h.normal) : patchNormal(h.patch, h.s, h.t);
 }
 
 SurfacePoint NurbsModel::closestPoint(const Eigen::Vector3d& q_M) const {
@@ -145,8 +147,8 @@ SurfacePoint NurbsModel::closestPoint(const Eigen::Vector3d& q_M) const {
   // there); ties elsewhere (the centre of a sphere) do not take part.
   Eigen::Vector3d normal = Eigen::Vector3d::Zero();
   for (const nurbs::PatchHit& t : r.ties)
-    if ((t.point - h.point).norm() <= kRelativeTie * size) normal += patchNormal(t.patch, t.s, t.t);
-  if (!(normal.norm() > 1e-6)) normal = patchNormal(h.patch, h.s, h.t);
+    if ((t.point - h.point).norm() <= kRelativeTie * size) normal += normalAt(t);
+  if (!(normal.norm() > 1e-6)) normal = normalAt(h);
   normal.normalize();
   if (d <= 4 * std::numeric_limits<double>::epsilon() * (q_M.norm() + size)) {  // on the surface
     out.signedDistance = d;

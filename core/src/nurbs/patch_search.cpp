@@ -109,6 +109,8 @@ PatchHit polish(const RationalBezierPatch& patch, int index, const Objective& f,
   hit.t = x[1];
   hit.value = value;
   hit.point = d.point;
+  // The normal comes with the last evaluation (the caller needs it for the sign); at a pole it is left out.
+  if (!unitNormal(d, hit.normal)) hit.normal.setZero();
   return hit;
 }
 

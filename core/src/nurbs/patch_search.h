@@ -49,11 +49,22 @@ class Objective {
   virtual void startBounds(const StartSet& start, double below, double* out) const;
 };
 
+/// Su x Sv normalised into `unit` where the surface is regular; false where it (nearly) vanishes (a pole).
+inline bool unitNormal(const SurfaceDerivatives& d, Eigen::Vector3d& unit) {
+  const Eigen::Vector3d n = d.du.cross(d.dv);
+  const double scale = d.du.norm() * d.dv.norm();
+  if (!(n.norm() > 1e-10 * scale && scale > 0)) return false;
+  unit = n.normalized();
+  return true;
+}
+
 /// A point of a patch found by the search.
 struct PatchHit {
   int patch = -1;
   double s = 0, t = 0, value = 0;
   Eigen::Vector3d point = Eigen::Vector3d::Zero();
+  /// Unit Su x Sv there where a Newton run ended and the surface is regular (zero elsewhere: not computed).
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();
 };
 
 struct SearchResult {
