@@ -1,7 +1,7 @@
 #include "pairs/nurbs_nurbs.h"
 
-#include "convex/gjk.h"
 #include "generic/generic_distance.h"
+#include "nurbs/hull_distance.h"
 #include "nurbs/pair_convexity.h"
 #include "nurbs/pair_newton.h"
 #include "nurbs/patch_tree.h"
@@ -254,12 +254,14 @@ class PairSearch {
     return c;
   }
 
-  /// min over B's hull of n·b − max over A's hull of n·a: a lower bound of the hulls' distance for unit n.
-  double hullGap(const Eigen::Vector3d& n) const {
+  /// min over B's hull of n·b − max over A's hull of n·a: a lower bound of the hulls' distance for unit n (B's
+  /// points in B's frame: n·(X p) = n·t + (Rᵀn)·p).
+  double hullGap(const Node& na, const Node& nb, const Eigen::Vector3d& n) const {
     double highA = -std::numeric_limits<double>::infinity(), lowB = -highA;
-    for (const Eigen::Vector3d& p : hullA_) highA = std::max(highA, n.dot(p));
-    for (const Eigen::Vector3d& p : hullB_) lowB = std::min(lowB, n.dot(p));
-    return lowB - highA;
+    for (const Eigen::Vector3d& p : na.points) highA = std::max(highA, n.dot(p));
+    const Eigen::Vector3d nB = R_BA_ * n;
+    for (const Eigen::Vector3d& p : nb.points) lowB = std::min(lowB, nB.dot(p));
+    return n.dot(X_AB_.translation()) + lowB - highA;
   }
 
   /// hint: a direction from A toward B along which the pair is likely separated (the parent's), or zero.
@@ -280,26 +282,27 @@ class PairSearch {
     const nurbs::Cone towards = nurbs::coneTowards(cb, na->ball.center, na->ball.radius + nb->ball.radius);
     if (!nurbs::mayHoldCritical(*na, towards, true) || !nurbs::mayHoldCritical(*nb, rotated(towards, R_BA_), true))
       return;
-    nurbs::controlPoints(*na, hullA_);
-    nurbs::controlPoints(*nb, X_AB_, hullB_);
     // The hulls' gap along one direction is a proved bound too: along the parent pair's closest-point direction
     // (or between the balls' centres) and along the best pair's, it often prunes the pair without running GJK.
-    for (const Eigen::Vector3d& along : {hint.squaredNorm() > 0 ? hint : Eigen::Vector3d(cb - na->ball.center),
-                                         Eigen::Vector3d(best_.pB - best_.pA)}) {
+    const Eigen::Vector3d start = hint.squaredNorm() > 0 ? hint : Eigen::Vector3d(cb - na->ball.center);
+    for (const Eigen::Vector3d& along : {start, Eigen::Vector3d(best_.pB - best_.pA)}) {
       const double n = along.norm();
       if (!(n > 0)) continue;
-      const double byAxis = hullGap(along / n) - margin;
+      const double byAxis = hullGap(*na, *nb, along / n) - margin;
       if (byAxis >= best_.value - 0.5 * tolerance_) {
         lowerOfPruned_ = std::min(lowerOfPruned_, byAxis);
         return;
       }
     }
-    // Overlapping hulls prove nothing about surfaces (at distance >= 0): their depth (EPA) is not worth
-    // measuring; the separating-axis bound GJK leaves (negative) still orders the deeper overlaps first.
-    const ConvexDistance c =
-        convexDistance(supportOfPointSet(hullA_), supportOfPointSet(hullB_), 0.25 * tolerance_, kHullGjkCap, false);
+    // Overlapping hulls prove nothing about surfaces (at distance >= 0): their depth is not worth measuring; the
+    // separating-axis bound GJK leaves (negative) still orders the deeper overlaps first. GJK stops as soon as
+    // its bound prunes the pair.
+    const double prune = best_.value - 0.5 * tolerance_ + margin;
+    const nurbs::HullDistance c = nurbs::hullDistance(na->points, nb->points, X_AB_,
+                                                      start.squaredNorm() > 0 ? start : Eigen::Vector3d::UnitX(),
+                                                      0.25 * tolerance_, kHullGjkCap, prune);
     iterations_ += c.iterations;
-    const double lower = std::min(c.lowerBound, c.distance) - margin;
+    const double lower = c.lower - margin;
     if (lower >= best_.value - 0.5 * tolerance_) {
       lowerOfPruned_ = std::min(lowerOfPruned_, lower);
       return;
@@ -321,7 +324,6 @@ class PairSearch {
   double lowerOfClosed_ = std::numeric_limits<double>::infinity();  // pairs at the depth cap
   double lowerOfPruned_ = std::numeric_limits<double>::infinity();  // pairs dropped by their bound
   int iterations_ = 0;
-  std::vector<Eigen::Vector3d> hullA_, hullB_;
   std::vector<NewtonEnd> ends_;
   std::vector<ConvexRegion> regions_;
   std::vector<std::unique_ptr<Node>> arena_;
