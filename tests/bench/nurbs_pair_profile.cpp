@@ -1,13 +1,14 @@
 // One surface–surface placement of nurbs_truth.h, ours only (no OpenCASCADE): for profiling and counting
 // instructions: valgrind --tool=callgrind --toggle-collect='*timedQueries*' counts the timed queries only (the
 // first query, which builds the cached trees, is outside).
-// usage: unidist_bench_nurbs_pair_profile [placement-substring] [repetitions] [tolerance]
+// usage: unidist_bench_nurbs_pair_profile [placement name or part of names] [repetitions] [tolerance]
 // prints per placement: the CPU time per query (median), the value, status, bounds and iterations.
 #include "bench/median.h"
 #include "bench/nurbs_truth.h"
 
 #include "unidist/distance.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <ctime>
@@ -41,8 +42,11 @@ int main(int argc, char** argv) {
   const std::string filter = argc > 1 ? argv[1] : "";
   const int reps = argc > 2 ? std::atoi(argv[2]) : 21;
   const double tolerance = argc > 3 ? std::atof(argv[3]) : 1e-9;
-  for (const nurbs_truth::Placement& p : nurbs_truth::placements()) {
-    if (std::string(p.name).find(filter) == std::string::npos) continue;
+  const std::vector<nurbs_truth::Placement> placements = nurbs_truth::placements();
+  // A whole name selects that placement alone (one name can be the start of another); otherwise a substring.
+  const bool exact = std::any_of(placements.begin(), placements.end(), [&](const auto& p) { return filter == p.name; });
+  for (const nurbs_truth::Placement& p : placements) {
+    if (exact ? filter != p.name : std::string(p.name).find(filter) == std::string::npos) continue;
     const unidist::NurbsModel a({p.a}, true), b({p.b}, true);
     unidist::DistanceOptions options;
     options.tolerance = tolerance;
