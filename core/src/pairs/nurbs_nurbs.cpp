@@ -236,11 +236,15 @@ class PairSearch {
     double nearest = std::numeric_limits<double>::infinity();
     Eigen::Vector4d x0 = Eigen::Vector4d::Zero();
     int pa = -1, pb = -1;
+    std::vector<std::array<Eigen::Vector3d, 4>> cornersB;  // B's corners in A's frame, mapped once
+    for (const auto& rb : b_.forest().roots)
+      cornersB.push_back({X_AB_ * rb->corners[0], X_AB_ * rb->corners[1], X_AB_ * rb->corners[2], X_AB_ * rb->corners[3]});
     for (const auto& ra : a_.forest().roots)
-      for (const auto& rb : b_.forest().roots)
+      for (std::size_t kb = 0; kb < cornersB.size(); ++kb)
         for (std::size_t i = 0; i < 4; ++i)
           for (std::size_t j = 0; j < 4; ++j)
-            if (const double d = (X_AB_ * rb->corners[j] - ra->corners[i]).squaredNorm(); d < nearest) {
+            if (const double d = (cornersB[kb][j] - ra->corners[i]).squaredNorm(); d < nearest) {
+              const auto& rb = b_.forest().roots[kb];
               nearest = d;
               x0 = Eigen::Vector4d(kCornerS[i], kCornerT[i], kCornerS[j], kCornerT[j]);
               pa = ra->patch;
