@@ -53,9 +53,9 @@ int main(int argc, char** argv) {
     unidist::DistanceResult r = unidist::distance(a, Eigen::Isometry3d::Identity(), b, p.X_WB, options);
     const std::vector<double> times = timedQueries(a, b, p.X_WB, options, reps, r);
     std::printf("%-28s cpu %8.1f us  value %+.12f (truth %+.12f, error %.1e)  bounds [%+.12f, %+.12f]  %s  "
-                "iterations %d\n",
+                "iterations %d  width %.3g  %s\n",
                 p.name, median(times), r.distance, p.truth, r.distance - p.truth, r.lowerBound, r.upperBound,
-                unidist::toString(r.status), r.iterations);
+                unidist::toString(r.status), r.iterations, r.upperBound - r.lowerBound, r.method);
   }
   return 0;
 }

@@ -141,7 +141,11 @@ class PairSearch {
 
   /// Certifies convexity around every untried Newton end inside the pair: boxes centred on it, from 1/32 of the
   /// patch down, each next size from how far the last one missed (the certificate's ratio grows with the box).
+  /// Not before the pair is as small as that first box: a region settles only pairs inside it, and around an end
+  /// above the best the search often stops (the hull bounds rising past the best) before pairs get that small.
   void certifyAround(const Node& na, const Node& nb) {
+    const ParamBox pair = boxOf(na, nb);
+    if ((pair.hi - pair.lo).maxCoeff() > kFirstRegion) return;
     for (NewtonEnd& e : ends_) {
       if (e.tried || e.patchA != na.patch || e.patchB != nb.patch) continue;
       const Eigen::Vector4d& x = e.x;
