@@ -285,11 +285,6 @@ class PairSearch {
       return;
     }
     if (settledByRegion(*na, *nb)) return;
-    // Every segment from A's ball to B's ball points into `towards`; an extremal pair needs one of them
-    // normal to both surfaces (or orthogonal to the edges they lie on).
-    const nurbs::Cone towards = nurbs::coneTowards(cb, na->ball.center, na->ball.radius + nb->ball.radius);
-    if (!nurbs::mayHoldCritical(*na, towards, true) || !nurbs::mayHoldCritical(*nb, rotated(towards, R_BA_), true))
-      return;
     // The hulls' gap along one direction is a proved bound too: along the parent pair's closest-point direction
     // (or between the balls' centres) it often prunes the pair without running GJK. (Along the best pair's
     // direction as well: more instructions than the GJK runs it saves.)
@@ -301,6 +296,11 @@ class PairSearch {
         return;
       }
     }
+    // Every segment from A's ball to B's ball points into `towards`; an extremal pair needs one of them
+    // normal to both surfaces (or orthogonal to the edges they lie on).
+    const nurbs::Cone towards = nurbs::coneTowards(cb, na->ball.center, na->ball.radius + nb->ball.radius);
+    if (!nurbs::mayHoldCritical(*na, towards, true) || !nurbs::mayHoldCritical(*nb, rotated(towards, R_BA_), true))
+      return;
     // Overlapping hulls prove nothing about surfaces (at distance >= 0): their depth is not worth measuring; the
     // separating-axis bound GJK leaves (negative) still orders the deeper overlaps first. GJK stops as soon as
     // its bound prunes the pair.
