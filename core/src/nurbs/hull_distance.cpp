@@ -6,15 +6,19 @@
 namespace unidist::nurbs {
 
 HullDistance hullDistance(const std::vector<Eigen::Vector3d>& a, const std::vector<Eigen::Vector3d>& b,
-                          const Eigen::Isometry3d& X_AB, const Eigen::Vector3d& start, double tolerance,
-                          int maxIterations, double stopAbove) {
+                          const Eigen::Isometry3d& X_AB, const Eigen::Vector3d& startA, const Eigen::Vector3d& startB,
+                          double tolerance, int maxIterations, double stopAbove) {
   using detail::GjkResult;
   using detail::SupportPoint;
   const Eigen::Matrix3d R_BA = X_AB.linear().transpose();
   const auto supportA = [&a](const Eigen::Vector3d& d) { return supportOfPoints(a, d); };
   const auto supportB = [&](const Eigen::Vector3d& d) -> Eigen::Vector3d { return X_AB * supportOfPoints(b, R_BA * d); };
   detail::ConvexScale scale;
-  GjkResult g = detail::gjkLoop(supportA, supportB, detail::minkowskiSupportOf(supportA, supportB, start),
+  SupportPoint start;
+  start.a = startA;
+  start.b = startB;
+  start.w = startA - startB;
+  GjkResult g = detail::gjkLoop(supportA, supportB, start,
                                 -std::numeric_limits<double>::infinity(), tolerance, maxIterations, scale, stopAbove);
   int iterations = g.iterations;
   // As convexDistance does: a separated run stalled on a degenerate simplex restarts from one support point

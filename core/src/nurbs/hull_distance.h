@@ -18,11 +18,12 @@ struct HullDistance {
   int iterations = 0;
 };
 
-/// a: A's points; b: B's points, mapped into A's frame by X_AB. start: a direction from A toward B (any non-zero
-/// vector) to begin from. Ends when the bounds meet to `tolerance`, or once `lower` reaches stopAbove (then the
-/// points are not the closest).
+/// a: A's points; b: B's points, mapped into A's frame by X_AB. startA, startB: a point of each hull (A's frame)
+/// to begin from (the supports along a direction from A toward B are a good start). Ends when the bounds meet to
+/// `tolerance`, or once `lower` reaches stopAbove (then the points are not the closest).
 HullDistance hullDistance(const std::vector<Eigen::Vector3d>& a, const std::vector<Eigen::Vector3d>& b,
-                          const Eigen::Isometry3d& X_AB, const Eigen::Vector3d& start, double tolerance,
-                          int maxIterations, double stopAbove = std::numeric_limits<double>::infinity());
+                          const Eigen::Isometry3d& X_AB, const Eigen::Vector3d& startA, const Eigen::Vector3d& startB,
+                          double tolerance, int maxIterations,
+                          double stopAbove = std::numeric_limits<double>::infinity());
 
 }  // namespace unidist::nurbs

@@ -263,12 +263,19 @@ class PairSearch {
   }
 
   /// min over B's hull of n·b − max over A's hull of n·a: a lower bound of the hulls' distance for unit n (B's
-  /// points in B's frame: n·(X p) = n·t + (Rᵀn)·p).
-  double hullGap(const Node& na, const Node& nb, const Eigen::Vector3d& n) const {
+  /// points in B's frame: n·(X p) = n·t + (Rᵀn)·p). Also the points attaining both: the hulls' supports along n
+  /// and −n (A's frame), where GJK starts.
+  double hullGap(const Node& na, const Node& nb, const Eigen::Vector3d& n, Eigen::Vector3d& supportA,
+                 Eigen::Vector3d& supportB) const {
+    std::size_t ia = 0, ib = 0;
     double highA = -std::numeric_limits<double>::infinity(), lowB = -highA;
-    for (const Eigen::Vector3d& p : na.points) highA = std::max(highA, n.dot(p));
+    for (std::size_t i = 0; i < na.points.size(); ++i)
+      if (const double v = n.dot(na.points[i]); v > highA) highA = v, ia = i;
     const Eigen::Vector3d nB = R_BA_ * n;
-    for (const Eigen::Vector3d& p : nb.points) lowB = std::min(lowB, nB.dot(p));
+    for (std::size_t i = 0; i < nb.points.size(); ++i)
+      if (const double v = nB.dot(nb.points[i]); v < lowB) lowB = v, ib = i;
+    supportA = na.points[ia];
+    supportB = X_AB_ * nb.points[ib];
     return n.dot(X_AB_.translation()) + lowB - highA;
   }
 
@@ -289,8 +296,9 @@ class PairSearch {
     // (or between the balls' centres) it often prunes the pair without running GJK. (Along the best pair's
     // direction as well: more instructions than the GJK runs it saves.)
     const Eigen::Vector3d start = hint.squaredNorm() > 0 ? hint : Eigen::Vector3d(cb - na->ball.center);
+    Eigen::Vector3d startA = na->points.front(), startB = X_AB_ * nb->points.front();
     if (const double n = start.norm(); n > 0) {
-      const double byAxis = hullGap(*na, *nb, start / n) - margin;
+      const double byAxis = hullGap(*na, *nb, start / n, startA, startB) - margin;
       if (byAxis >= best_.value - 0.5 * tolerance_) {
         lowerOfPruned_ = std::min(lowerOfPruned_, byAxis);
         return;
@@ -305,9 +313,8 @@ class PairSearch {
     // separating-axis bound GJK leaves (negative) still orders the deeper overlaps first. GJK stops as soon as
     // its bound prunes the pair.
     const double prune = best_.value - 0.5 * tolerance_ + margin;
-    const nurbs::HullDistance c = nurbs::hullDistance(na->points, nb->points, X_AB_,
-                                                      start.squaredNorm() > 0 ? start : Eigen::Vector3d::UnitX(),
-                                                      0.25 * tolerance_, kHullGjkCap, prune);
+    const nurbs::HullDistance c =
+        nurbs::hullDistance(na->points, nb->points, X_AB_, startA, startB, 0.25 * tolerance_, kHullGjkCap, prune);
     iterations_ += c.iterations;
     const double lower = c.lower - margin;
     if (lower >= best_.value - 0.5 * tolerance_) {
