@@ -306,9 +306,12 @@ class PairSearch {
     }
     // Every segment from A's ball to B's ball points into `towards`; an extremal pair needs one of them
     // normal to both surfaces (or orthogonal to the edges they lie on).
-    const nurbs::Cone towards = nurbs::coneTowards(cb, na->ball.center, na->ball.radius + nb->ball.radius);
-    if (!nurbs::mayHoldCritical(*na, towards, true) || !nurbs::mayHoldCritical(*nb, rotated(towards, R_BA_), true))
-      return;
+    // (Nodes whose normals point every way pass whatever the cone: it is not worth its arcsine then.)
+    if (!na->normal.all || !nb->normal.all) {
+      const nurbs::Cone towards = nurbs::coneTowards(cb, na->ball.center, na->ball.radius + nb->ball.radius);
+      if (!nurbs::mayHoldCritical(*na, towards, true) || !nurbs::mayHoldCritical(*nb, rotated(towards, R_BA_), true))
+        return;
+    }
     // Overlapping hulls prove nothing about surfaces (at distance >= 0): their depth is not worth measuring; the
     // separating-axis bound GJK leaves (negative) still orders the deeper overlaps first. GJK stops as soon as
     // its bound prunes the pair.
