@@ -27,6 +27,7 @@ constexpr int kSeedPairs = 3;       // root pairs Newton starts from before the 
 constexpr double kSameEnd = 1e-9;   // Newton ends this close in parameters are one (certified once)
 constexpr double kFirstRegion = 1.0 / 32;  // the first convexity box tried around a Newton end (patch parameters)
 constexpr int kRegionAttempts = 5;
+constexpr double kSplitBothRatio = 0.5;  // the smaller node's ball at least this fraction of the larger's
 
 using Node = nurbs::PatchNode;
 
@@ -81,6 +82,18 @@ class PairSearch {
       const Node* n = splitA ? top.a : top.b;
       if (n->depth >= kMaxDepth) {
         lowerOfClosed_ = std::min(lowerOfClosed_, top.lower);
+        continue;
+      }
+      // Nodes of about the same size are both split at once: their children's pairs are visited without the
+      // intermediate pairs (one node split) being pushed and popped. Only while the children are kept in the
+      // trees: building nodes below kCachedDepth costs more than the pops it saves.
+      const Node* other = splitA ? top.b : top.a;
+      if (other->ball.radius >= kSplitBothRatio * n->ball.radius && top.a->depth < nurbs::kCachedDepth &&
+          top.b->depth < nurbs::kCachedDepth) {
+        const auto childrenA = a_.forest().children(*top.a, arena_);
+        const auto childrenB = b_.forest().children(*top.b, arena_);
+        for (const Node* ca : childrenA)
+          for (const Node* cb : childrenB) visit(ca, cb, top.wB - top.wA);
         continue;
       }
       for (const Node* c : (splitA ? a_.forest() : b_.forest()).children(*n, arena_))
