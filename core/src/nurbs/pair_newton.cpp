@@ -10,7 +10,6 @@ namespace {
 
 constexpr int kSteps = 40;
 constexpr int kDampings = 12;
-constexpr double kRoundingStep = 1e-14;  // parameter steps this short only move by rounding
 
 struct Eval {
   SurfaceDerivatives a, b;  // b already in A's frame
@@ -87,14 +86,12 @@ PairHit polishPair(const RationalBezierPatch& a, const RationalBezierPatch& b, c
       if (trial == x) break;
       const Eval et = evaluate(a, b, X_AB, trial);
       ++evaluations;
-      const double moved = (trial - x).cwiseAbs().maxCoeff();
       if (et.value < e.value) {
         accepted = true;
+        const double moved = (trial - x).cwiseAbs().maxCoeff();
         x = trial;
         e = et;
-        if (moved < kRoundingStep) step = kSteps;  // converged to rounding level
-      } else if (moved < kRoundingStep) {
-        break;  // a step at rounding level that does not descend: damped ones are shorter still
+        if (moved < 1e-14) step = kSteps;  // converged to rounding level
       }
     }
     if (!accepted) break;
