@@ -94,6 +94,7 @@ class PairSearch {
         const auto childrenB = b_.forest().children(*top.b, arena_);
         for (const Node* ca : childrenA)
           for (const Node* cb : childrenB) visit(ca, cb, top.wB - top.wA);
+        ++popped;  // counted twice: a search the budget stops does about the work it did with one-node splits
         continue;
       }
       for (const Node* c : (splitA ? a_.forest() : b_.forest()).children(*n, arena_))
