@@ -1,6 +1,7 @@
 // GJK distance with the signed-volume sub-distance (Montanari, Petrinic & Barbieri, ACM TOG 2017), and the
 // driver that hands overlapping pairs to EPA (epa.cpp). See gjk.h for the bounds and what they prove.
 #include "convex/gjk.h"
+#include "convex/gjk_loop.h"
 
 #include <algorithm>
 #include <cmath>
@@ -150,19 +151,6 @@ SubSimplex s3d(const Vector3d* p) {
   return best;
 }
 
-double maxAbs(const SupportPoint& s) { return std::max(s.a.cwiseAbs().maxCoeff(), s.b.cwiseAbs().maxCoeff()); }
-
-// Sets r.pointA and r.pointB from the simplex and returns pointA − pointB.
-Vector3d witnessPoints(GjkResult& r) {
-  r.pointA.setZero();
-  r.pointB.setZero();
-  for (int i = 0; i < r.count; ++i) {
-    r.pointA += r.lambda[i] * r.simplex[i].a;
-    r.pointB += r.lambda[i] * r.simplex[i].b;
-  }
-  return r.pointA - r.pointB;
-}
-
 }  // namespace
 
 double ConvexScale::roundoff() const { return 8 * kEps * std::max(coordMag, size); }
@@ -186,63 +174,7 @@ SubSimplex closestOnSimplex(const Vector3d* points, int n) {
 
 GjkResult gjk(const SupportFn& a, const SupportFn& b, const SupportPoint& start, double lowerBound, double tolerance,
               int maxIterations, ConvexScale& scale) {
-  GjkResult r;
-  r.simplex[0] = start;
-  r.lambda[0] = 1;
-  r.count = 1;
-  r.v = start.w;
-  r.lowerBound = lowerBound;
-  scale.coordMag = std::max(scale.coordMag, maxAbs(start));
-  for (int it = 0; it < maxIterations; ++it) {
-    const double vv = r.v.squaredNorm();
-    const double eps = scale.roundoff();
-    // The origin is within rounding of the hull: overlap or contact (EPA decides which).
-    if (vv <= eps * eps) {
-      r.originInside = true;
-      break;
-    }
-    const double vn = std::sqrt(vv);
-    const SupportPoint s = minkowskiSupport(a, b, -r.v);
-    ++r.iterations;
-    scale.coordMag = std::max(scale.coordMag, maxAbs(s));
-    const double vw = r.v.dot(s.w);
-    const double gapAlongV = vw / vn;  // the separating-axis gap along v (see gjk.h)
-    r.lowerBound = std::max(r.lowerBound, gapAlongV);
-    // Stop on the gap along the current v, not on the best bound so far, measured from the distance of the
-    // real points (not |v|, which on sliver simplices differs from it by ~1e-12 relative): then the current
-    // points are certified too, their depths in A and B summing to at most this gap.
-    r.witnessGap = witnessPoints(r).norm() - gapAlongV;
-    if (r.witnessGap <= tolerance) break;
-    // w is not beyond the current support plane by more than rounding: no further progress is possible.
-    if (vn - gapAlongV <= eps) break;
-    bool duplicate = false;
-    for (int i = 0; i < r.count; ++i) duplicate = duplicate || s.w == r.simplex[i].w;
-    if (duplicate) break;
-
-    SupportPoint cand[4];
-    Vector3d pts[4];
-    for (int i = 0; i < r.count; ++i) cand[i] = r.simplex[i];
-    cand[r.count] = s;
-    for (int i = 0; i <= r.count; ++i) pts[i] = cand[i].w;
-    const SubSimplex sub = closestOnSimplex(pts, r.count + 1);
-    // Cycling guard: the distance must strictly decrease, else rounding has taken over; keep the last simplex.
-    if (sub.count < 4 && !(sub.v.squaredNorm() < vv)) break;
-    r.count = sub.count;
-    for (int i = 0; i < sub.count; ++i) {
-      r.simplex[i] = cand[sub.index[i]];
-      r.lambda[i] = sub.lambda[i];
-    }
-    r.v = sub.v;
-    r.witnessGap = std::numeric_limits<double>::infinity();  // the new v has not been checked yet
-    if (sub.count == 4) {
-      r.originInside = true;
-      break;
-    }
-  }
-  r.upperBound = witnessPoints(r).norm();  // two real points of A and B (convex combinations of supports)
-  r.lowerBound = std::min(r.lowerBound, r.upperBound);  // equal up to rounding when they cross
-  r.converged = r.upperBound - r.lowerBound <= tolerance && r.witnessGap <= tolerance;
-  return r;
+  return gjkLoop(a, b, start, lowerBound, tolerance, maxIterations, scale);
 }
 
 ConvexDistance convexDistance(const SupportFn& a, const SupportFn& b, double tolerance, int maxIterations,
@@ -263,7 +195,7 @@ ConvexDistance convexDistance(const SupportFn& a, const SupportFn& b, double tol
       hi[i] = axis[2 * i].w[i];
       lo[i] = axis[2 * i + 1].w[i];
       lower = std::max({lower, -hi[i], lo[i]});
-      scale.coordMag = std::max({scale.coordMag, maxAbs(axis[2 * i]), maxAbs(axis[2 * i + 1])});
+      scale.coordMag = std::max({scale.coordMag, gjk_loop::maxAbs(axis[2 * i]), gjk_loop::maxAbs(axis[2 * i + 1])});
     }
     scale.size = (hi - lo).norm();
   };

@@ -58,13 +58,14 @@ class DifferenceNets {
     return H;
   }
 
-  /// Values of (X, W)_(i,j) at (s, t) (zero-width intervals).
-  HomogeneousDerivatives values(double s, double t) const {
+  /// Values of (X, W)_(i,j), i + j <= maxOrder, at (s, t) (zero-width intervals; higher orders left zero).
+  HomogeneousDerivatives values(double s, double t, int maxOrder) const {
     std::array<std::array<double, kMaxNurbsDegree + 1>, kMaxNurbsDegree + 1> bu{}, bv{};
     basis(n_, s, bu);
     basis(m_, t, bv);
     HomogeneousDerivatives H{};
     forEachDerivative([&](int i, int j) {
+      if (i + j > maxOrder) return;
       Eigen::Vector4d v = Eigen::Vector4d::Zero();
       for (int a = 0; a <= n_ - i; ++a) {
         Eigen::Vector4d row = Eigen::Vector4d::Zero();
@@ -106,11 +107,12 @@ class DifferenceNets {
 
 /// S_(i,j) from X = W·S by Leibniz: S_α = (X_α − Σ_{0<β<=α} C(α,β) W_β S_(α−β)) / W, from S itself. False for a
 /// weight range that is not positive.
-bool rationalDerivatives(const HomogeneousDerivatives& H, const IntervalVec3& point, Derivatives& S) {
+bool rationalDerivatives(const HomogeneousDerivatives& H, const IntervalVec3& point, Derivatives& S,
+                         int maxOrder = kOrder) {
   const Interval W = H[0][0][3];
   if (!(W.lo > 0)) return false;
   S[0][0] = point;
-  for (int order = 1; order <= kOrder; ++order)
+  for (int order = 1; order <= maxOrder; ++order)
     for (int i = 0; i <= order; ++i) {
       const int j = order - i;
       const auto& X = H[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)];
@@ -137,18 +139,23 @@ bool encloseOver(const RationalBezierPatch& p, double ws, double wt, Derivatives
       hi = hi.cwiseMax(p.point(i, j));
     }
   if (!rationalDerivatives(DifferenceNets(p).ranges(), {Interval{lo[0], hi[0]}, {lo[1], hi[1]}, {lo[2], hi[2]}}, S)) return false;
-  for (int i = 0; i <= kOrder; ++i)
-    for (int j = 0; i + j <= kOrder; ++j)
-      for (Interval& c : S[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)]) c = (1 / (std::pow(ws, i) * std::pow(wt, j))) * c;
+  // The chain rule's factors 1 / (ws^i wt^j), by products (std::pow costs more than the rest of the loop).
+  double perS = 1;
+  for (int i = 0; i <= kOrder; ++i, perS /= ws) {
+    double factor = perS;
+    for (int j = 0; i + j <= kOrder; ++j, factor /= wt)
+      for (Interval& c : S[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)]) c = factor * c;
+  }
   return true;
 }
 
-bool valuesAt(const DifferenceNets& p, double s, double t, Derivatives& S) {
-  const HomogeneousDerivatives H = p.values(s, t);
+/// S and its derivatives up to maxOrder at (s, t).
+bool valuesAt(const DifferenceNets& p, double s, double t, Derivatives& S, int maxOrder = kOrder) {
+  const HomogeneousDerivatives H = p.values(s, t, maxOrder);
   const double w = H[0][0][3].lo;
   IntervalVec3 point;
   for (std::size_t q = 0; q < 3; ++q) point[q] = {H[0][0][q].lo / w, H[0][0][q].lo / w};
-  return rationalDerivatives(H, point, S);
+  return rationalDerivatives(H, point, S, maxOrder);
 }
 
 RationalBezierPatch mapped(RationalBezierPatch p, const Eigen::Isometry3d& X) {
@@ -156,23 +163,41 @@ RationalBezierPatch mapped(RationalBezierPatch p, const Eigen::Isometry3d& X) {
   return p;
 }
 
-/// Derivatives of r = S_A(s,t) − S_B(u,v), by the variables they are taken in (0, 1: A's s, t; 2, 3: B's u, v):
-/// mixed A–B derivatives vanish.
+/// r = S_A(s,t) − S_B(u,v) and its derivatives up to order three in the variables (0, 1: A's s, t; 2, 3: B's
+/// u, v), tabulated once: mixed A–B derivatives vanish.
 struct Residual {
-  const Derivatives& A;
-  const Derivatives& B;
+  IntervalVec3 r;
+  std::array<IntervalVec3, 4> d1{};
+  std::array<std::array<IntervalVec3, 4>, 4> d2{};
+  std::array<std::array<std::array<IntervalVec3, 4>, 4>, 4> d3{};
 
-  IntervalVec3 operator()(std::initializer_list<int> vars) const {
-    int onA = 0, onB = 0, s = 0, t = 0;
-    for (const int v : vars) {
-      (v < 2 ? onA : onB) += 1;
-      (v % 2 == 0 ? s : t) += 1;
+  Residual(const Derivatives& A, const Derivatives& B, int maxOrder = kOrder) : r(A[0][0] - B[0][0]) {
+    // The derivative by the variables with s-count i and t-count j, all on one side (+A or −B).
+    const auto side = [&](int v, int i, int j) {
+      const auto& D = v < 2 ? A : B;
+      const IntervalVec3& x = D[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)];
+      return v < 2 ? x : -x;
+    };
+    const auto st = [](int v) { return v % 2 == 0 ? std::array<int, 2>{1, 0} : std::array<int, 2>{0, 1}; };
+    for (int p = 0; p < 4; ++p) {
+      const auto [ps, pt] = st(p);
+      d1[idx(p)] = side(p, ps, pt);
+      if (maxOrder < 2) continue;
+      for (int q = 0; q < 4; ++q) {
+        if ((p < 2) != (q < 2)) continue;
+        const auto [qs, qt] = st(q);
+        d2[idx(p)][idx(q)] = side(p, ps + qs, pt + qt);
+        if (maxOrder < 3) continue;
+        for (int c = 0; c < 4; ++c) {
+          if ((p < 2) != (c < 2)) continue;
+          const auto [cs, ct] = st(c);
+          d3[idx(p)][idx(q)][idx(c)] = side(p, ps + qs + cs, pt + qt + ct);
+        }
+      }
     }
-    if (onA > 0 && onB > 0) return {};
-    if (onB == 0 && onA == 0) return A[0][0] - B[0][0];
-    return onB == 0 ? A[static_cast<std::size_t>(s)][static_cast<std::size_t>(t)]
-                    : -B[static_cast<std::size_t>(s)][static_cast<std::size_t>(t)];
   }
+
+  static std::size_t idx(int k) { return static_cast<std::size_t>(k); }
 };
 
 Eigen::Vector3d mid(const IntervalVec3& v) { return {0.5 * (v[0].lo + v[0].hi), 0.5 * (v[1].lo + v[1].hi), 0.5 * (v[2].lo + v[2].hi)}; }
@@ -191,10 +216,10 @@ double spectralBound(const Eigen::Matrix4d& m) { return std::min(m.rowwise().sum
 /// less rounding (each factor's coordinates to kRounding of `scale`); `at` holds the derivatives at z.
 double tangentBound(const Residual& at, const Eigen::Vector4d& lo, const Eigen::Vector4d& hi, const Eigen::Vector4d& z,
                     double scale) {
-  const Eigen::Vector3d r = mid(at({}));
+  const Eigen::Vector3d r = mid(at.r);
   double f = 0.5 * r.squaredNorm();
   for (int c = 0; c < 4; ++c) {
-    const Eigen::Vector3d J = mid(at({c}));
+    const Eigen::Vector3d J = mid(at.d1[static_cast<std::size_t>(c)]);
     const double g = r.dot(J), slack = kRounding * scale * J.norm();
     f += std::min(g * (lo[c] - z[c]), g * (hi[c] - z[c])) - slack * std::max(z[c] - lo[c], hi[c] - z[c]);
   }
@@ -221,17 +246,22 @@ ConvexityCertificate certifyConvexPair(const RationalBezierPatch& a, const Ratio
       !encloseOver(subpatch(bC, lo[2], hi[2], lo[3], hi[3]), width[2], width[3], boxB) ||
       !valuesAt(netsA, x[0], x[1], atA) || !valuesAt(netsB, x[2], x[3], atB))
     return out;
-  const Residual box{boxA, boxB}, at{atA, atB};
+  const Residual box(boxA, boxB), at(atA, atB);
+  const auto u = [](int k) { return static_cast<std::size_t>(k); };
 
   // f, its gradient and Hessian at x: H_pq = r_p·r_q + r·r_pq.
-  const Eigen::Vector3d r = mid(at({}));
+  const Eigen::Vector3d r = mid(at.r);
   std::array<Eigen::Vector3d, 4> J;
-  for (int p = 0; p < 4; ++p) J[static_cast<std::size_t>(p)] = mid(at({p}));
+  std::array<std::array<Eigen::Vector3d, 4>, 4> K;
+  for (int p = 0; p < 4; ++p) {
+    J[u(p)] = mid(at.d1[u(p)]);
+    for (int q = 0; q < 4; ++q) K[u(p)][u(q)] = mid(at.d2[u(p)][u(q)]);
+  }
   Eigen::Matrix4d Hx;
   Eigen::Vector4d g;
   for (int p = 0; p < 4; ++p) {
-    g[p] = r.dot(J[static_cast<std::size_t>(p)]);
-    for (int q = 0; q < 4; ++q) Hx(p, q) = J[static_cast<std::size_t>(p)].dot(J[static_cast<std::size_t>(q)]) + r.dot(mid(at({p, q})));
+    g[p] = r.dot(J[u(p)]);
+    for (int q = 0; q < 4; ++q) Hx(p, q) = J[u(p)].dot(J[u(q)]) + r.dot(K[u(p)][u(q)]);
   }
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix4d> eigen(Hx);
   if (!(eigen.eigenvalues()[0] > 0)) return out;
@@ -246,17 +276,14 @@ ConvexityCertificate certifyConvexPair(const RationalBezierPatch& a, const Ratio
     Eigen::Matrix4d dH, deviation;
     for (int p = 0; p < 4; ++p)
       for (int q = p; q < 4; ++q) {
-        const std::array<std::array<std::initializer_list<int>, 2>, 4> terms = {{{{{p, c}, {q}}},
-                                                                                 {{{p}, {q, c}}},
-                                                                                 {{{c}, {p, q}}},
-                                                                                 {{{}, {p, q, c}}}}};
-        double value = 0, spread = 0;
-        for (const auto& [u, v] : terms) {
-          value += mid(at(u)).dot(mid(at(v)));
-          spread += dotDeviation(box(u), at(u), box(v), at(v));
-        }
-        dH(p, q) = dH(q, p) = value;
-        deviation(p, q) = deviation(q, p) = spread;
+        const std::size_t pi = u(p), qi = u(q), ci = u(c);
+        const Eigen::Vector3d T = mid(at.d3[pi][qi][ci]);
+        dH(p, q) = dH(q, p) = K[pi][ci].dot(J[qi]) + J[pi].dot(K[qi][ci]) + J[ci].dot(K[pi][qi]) + r.dot(T);
+        deviation(p, q) = deviation(q, p) =
+            dotDeviation(box.d2[pi][ci], at.d2[pi][ci], box.d1[qi], at.d1[qi]) +
+            dotDeviation(box.d1[pi], at.d1[pi], box.d2[qi][ci], at.d2[qi][ci]) +
+            dotDeviation(box.d1[ci], at.d1[ci], box.d2[pi][qi], at.d2[pi][qi]) +
+            dotDeviation(box.r, at.r, box.d3[pi][qi][ci], at.d3[pi][qi][ci]);
       }
     const double pointPart = (P * dH * P).cwiseAbs().rowwise().sum().maxCoeff();  // >= its spectral norm
     relative += reach[c] * (pointPart + spectralBound(P.cwiseAbs() * deviation * P.cwiseAbs()));
@@ -278,11 +305,12 @@ ConvexityCertificate certifyConvexPair(const RationalBezierPatch& a, const Ratio
   Derivatives zA, zB;
   for (int step = 0; step < 2; ++step) {
     z = (z - solver.solve(gz)).cwiseMax(lo).cwiseMin(hi);
-    if (!valuesAt(netsA, z[0], z[1], zA) || !valuesAt(netsB, z[2], z[3], zB)) break;
-    const Residual atZ{zA, zB};
+    // Only the value and the gradient are needed there.
+    if (!valuesAt(netsA, z[0], z[1], zA, 1) || !valuesAt(netsB, z[2], z[3], zB, 1)) break;
+    const Residual atZ(zA, zB, 1);
     lower = std::max(lower, tangentBound(atZ, lo, hi, z, scale));
-    const Eigen::Vector3d rz = mid(atZ({}));
-    for (int c = 0; c < 4; ++c) gz[c] = rz.dot(mid(atZ({c})));
+    const Eigen::Vector3d rz = mid(atZ.r);
+    for (int c = 0; c < 4; ++c) gz[c] = rz.dot(mid(atZ.d1[u(c)]));
   }
   out.proved = true;
   out.lower = lower;

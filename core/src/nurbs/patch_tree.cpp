@@ -189,14 +189,11 @@ bool mayHoldCritical(const PatchNode& n, const Cone& towards, bool corners) {
   return (edgeU && canBeOrthogonal(n.cv, towards)) || (edgeV && canBeOrthogonal(n.cu, towards));
 }
 
-void controlPoints(const PatchNode& n, std::vector<Eigen::Vector3d>& out) {
-  out.clear();
-  for (const Eigen::Vector4d& h : n.net.net) out.push_back(h.head<3>() / h[3]);
-}
+void controlPoints(const PatchNode& n, std::vector<Eigen::Vector3d>& out) { out = n.points; }
 
 void controlPoints(const PatchNode& n, const Eigen::Isometry3d& X, std::vector<Eigen::Vector3d>& out) {
   out.clear();
-  for (const Eigen::Vector4d& h : n.net.net) out.push_back(X * Eigen::Vector3d(h.head<3>() / h[3]));
+  for (const Eigen::Vector3d& p : n.points) out.push_back(X * p);
 }
 
 BoundingSphere ballOfNet(const std::vector<Eigen::Vector4d>& net) {
@@ -284,6 +281,8 @@ std::unique_ptr<PatchNode> makeNode(RationalBezierPatch net, int patch, int dept
   n->t0 = t0;
   n->t1 = t1;
   n->ball = ballOfNet(n->net.net);
+  n->points.reserve(n->net.net.size());
+  for (const Eigen::Vector4d& h : n->net.net) n->points.push_back(h.head<3>() / h[3]);
   tangentCones(n->net, n->cu, n->cv);
   n->normal = crossCone(n->cu, n->cv);
   n->box = frameBoxOf(n->net, n->ball, n->cu, n->cv, n->normal);
@@ -314,7 +313,7 @@ std::array<const PatchNode*, 4> PatchForest::children(const PatchNode& n,
     std::call_once(n.childrenOnce, [&] {
       make(n.cached);
       nodes += 4;
-      bytes += 4 * (sizeof(PatchNode) + n.net.net.size() * sizeof(Eigen::Vector4d));
+      bytes += 4 * (sizeof(PatchNode) + n.net.net.size() * (sizeof(Eigen::Vector4d) + sizeof(Eigen::Vector3d)));
     });
     for (int k = 0; k < 4; ++k) out[static_cast<std::size_t>(k)] = n.cached[static_cast<std::size_t>(k)].get();
     return out;

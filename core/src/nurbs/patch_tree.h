@@ -63,6 +63,7 @@ struct FrameBox {
 
 struct PatchNode {
   RationalBezierPatch net;             // the subpatch, local parameters of its own
+  std::vector<Eigen::Vector3d> points;  // its Euclidean control points: their hull holds it (positive weights)
   int patch = 0, depth = 0;
   double s0 = 0, s1 = 1, t0 = 0, t1 = 1;  // its box in the patch's local parameters
   BoundingSphere ball;

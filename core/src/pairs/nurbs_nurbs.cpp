@@ -1,7 +1,7 @@
 #include "pairs/nurbs_nurbs.h"
 
-#include "convex/gjk.h"
 #include "generic/generic_distance.h"
+#include "nurbs/hull_distance.h"
 #include "nurbs/pair_convexity.h"
 #include "nurbs/pair_newton.h"
 #include "nurbs/patch_tree.h"
@@ -27,6 +27,7 @@ constexpr int kSeedPairs = 3;       // root pairs Newton starts from before the 
 constexpr double kSameEnd = 1e-9;   // Newton ends this close in parameters are one (certified once)
 constexpr double kFirstRegion = 1.0 / 32;  // the first convexity box tried around a Newton end (patch parameters)
 constexpr int kRegionAttempts = 5;
+constexpr double kSplitBothRatio = 0.5;  // the smaller node's ball at least this fraction of the larger's
 
 using Node = nurbs::PatchNode;
 
@@ -81,6 +82,19 @@ class PairSearch {
       const Node* n = splitA ? top.a : top.b;
       if (n->depth >= kMaxDepth) {
         lowerOfClosed_ = std::min(lowerOfClosed_, top.lower);
+        continue;
+      }
+      // Nodes of about the same size are both split at once: their children's pairs are visited without the
+      // intermediate pairs (one node split) being pushed and popped. Only while the children are kept in the
+      // trees: building nodes below kCachedDepth costs more than the pops it saves.
+      const Node* other = splitA ? top.b : top.a;
+      if (other->ball.radius >= kSplitBothRatio * n->ball.radius && top.a->depth < nurbs::kCachedDepth &&
+          top.b->depth < nurbs::kCachedDepth) {
+        const auto childrenA = a_.forest().children(*top.a, arena_);
+        const auto childrenB = b_.forest().children(*top.b, arena_);
+        for (const Node* ca : childrenA)
+          for (const Node* cb : childrenB) visit(ca, cb, top.wB - top.wA);
+        ++popped;  // counted twice: a search the budget stops does about the work it did with one-node splits
         continue;
       }
       for (const Node* c : (splitA ? a_.forest() : b_.forest()).children(*n, arena_))
@@ -141,7 +155,11 @@ class PairSearch {
 
   /// Certifies convexity around every untried Newton end inside the pair: boxes centred on it, from 1/32 of the
   /// patch down, each next size from how far the last one missed (the certificate's ratio grows with the box).
+  /// Not before the pair is as small as that first box: a region settles only pairs inside it, and around an end
+  /// above the best the search often stops (the hull bounds rising past the best) before pairs get that small.
   void certifyAround(const Node& na, const Node& nb) {
+    const ParamBox pair = boxOf(na, nb);
+    if ((pair.hi - pair.lo).maxCoeff() > kFirstRegion) return;
     for (NewtonEnd& e : ends_) {
       if (e.tried || e.patchA != na.patch || e.patchB != nb.patch) continue;
       const Eigen::Vector4d& x = e.x;
@@ -236,11 +254,15 @@ class PairSearch {
     double nearest = std::numeric_limits<double>::infinity();
     Eigen::Vector4d x0 = Eigen::Vector4d::Zero();
     int pa = -1, pb = -1;
+    std::vector<std::array<Eigen::Vector3d, 4>> cornersB;  // B's corners in A's frame, mapped once
+    for (const auto& rb : b_.forest().roots)
+      cornersB.push_back({X_AB_ * rb->corners[0], X_AB_ * rb->corners[1], X_AB_ * rb->corners[2], X_AB_ * rb->corners[3]});
     for (const auto& ra : a_.forest().roots)
-      for (const auto& rb : b_.forest().roots)
+      for (std::size_t kb = 0; kb < cornersB.size(); ++kb)
         for (std::size_t i = 0; i < 4; ++i)
           for (std::size_t j = 0; j < 4; ++j)
-            if (const double d = (X_AB_ * rb->corners[j] - ra->corners[i]).squaredNorm(); d < nearest) {
+            if (const double d = (cornersB[kb][j] - ra->corners[i]).squaredNorm(); d < nearest) {
+              const auto& rb = b_.forest().roots[kb];
               nearest = d;
               x0 = Eigen::Vector4d(kCornerS[i], kCornerT[i], kCornerS[j], kCornerT[j]);
               pa = ra->patch;
@@ -254,12 +276,21 @@ class PairSearch {
     return c;
   }
 
-  /// min over B's hull of n·b − max over A's hull of n·a: a lower bound of the hulls' distance for unit n.
-  double hullGap(const Eigen::Vector3d& n) const {
+  /// min over B's hull of n·b − max over A's hull of n·a: a lower bound of the hulls' distance for unit n (B's
+  /// points in B's frame: n·(X p) = n·t + (Rᵀn)·p). Also the points attaining both: the hulls' supports along n
+  /// and −n (A's frame), where GJK starts.
+  double hullGap(const Node& na, const Node& nb, const Eigen::Vector3d& n, Eigen::Vector3d& supportA,
+                 Eigen::Vector3d& supportB) const {
+    std::size_t ia = 0, ib = 0;
     double highA = -std::numeric_limits<double>::infinity(), lowB = -highA;
-    for (const Eigen::Vector3d& p : hullA_) highA = std::max(highA, n.dot(p));
-    for (const Eigen::Vector3d& p : hullB_) lowB = std::min(lowB, n.dot(p));
-    return lowB - highA;
+    for (std::size_t i = 0; i < na.points.size(); ++i)
+      if (const double v = n.dot(na.points[i]); v > highA) highA = v, ia = i;
+    const Eigen::Vector3d nB = R_BA_ * n;
+    for (std::size_t i = 0; i < nb.points.size(); ++i)
+      if (const double v = nB.dot(nb.points[i]); v < lowB) lowB = v, ib = i;
+    supportA = na.points[ia];
+    supportB = X_AB_ * nb.points[ib];
+    return n.dot(X_AB_.translation()) + lowB - highA;
   }
 
   /// hint: a direction from A toward B along which the pair is likely separated (the parent's), or zero.
@@ -275,31 +306,34 @@ class PairSearch {
       return;
     }
     if (settledByRegion(*na, *nb)) return;
-    // Every segment from A's ball to B's ball points into `towards`; an extremal pair needs one of them
-    // normal to both surfaces (or orthogonal to the edges they lie on).
-    const nurbs::Cone towards = nurbs::coneTowards(cb, na->ball.center, na->ball.radius + nb->ball.radius);
-    if (!nurbs::mayHoldCritical(*na, towards, true) || !nurbs::mayHoldCritical(*nb, rotated(towards, R_BA_), true))
-      return;
-    nurbs::controlPoints(*na, hullA_);
-    nurbs::controlPoints(*nb, X_AB_, hullB_);
     // The hulls' gap along one direction is a proved bound too: along the parent pair's closest-point direction
-    // (or between the balls' centres) and along the best pair's, it often prunes the pair without running GJK.
-    for (const Eigen::Vector3d& along : {hint.squaredNorm() > 0 ? hint : Eigen::Vector3d(cb - na->ball.center),
-                                         Eigen::Vector3d(best_.pB - best_.pA)}) {
-      const double n = along.norm();
-      if (!(n > 0)) continue;
-      const double byAxis = hullGap(along / n) - margin;
+    // (or between the balls' centres) it often prunes the pair without running GJK. (Along the best pair's
+    // direction as well: more instructions than the GJK runs it saves.)
+    const Eigen::Vector3d start = hint.squaredNorm() > 0 ? hint : Eigen::Vector3d(cb - na->ball.center);
+    Eigen::Vector3d startA = na->points.front(), startB = X_AB_ * nb->points.front();
+    if (const double n = start.norm(); n > 0) {
+      const double byAxis = hullGap(*na, *nb, start / n, startA, startB) - margin;
       if (byAxis >= best_.value - 0.5 * tolerance_) {
         lowerOfPruned_ = std::min(lowerOfPruned_, byAxis);
         return;
       }
     }
-    // Overlapping hulls prove nothing about surfaces (at distance >= 0): their depth (EPA) is not worth
-    // measuring; the separating-axis bound GJK leaves (negative) still orders the deeper overlaps first.
-    const ConvexDistance c =
-        convexDistance(supportOfPointSet(hullA_), supportOfPointSet(hullB_), 0.25 * tolerance_, kHullGjkCap, false);
+    // Every segment from A's ball to B's ball points into `towards`; an extremal pair needs one of them
+    // normal to both surfaces (or orthogonal to the edges they lie on).
+    // (Nodes whose normals point every way pass whatever the cone: it is not worth its arcsine then.)
+    if (!na->normal.all || !nb->normal.all) {
+      const nurbs::Cone towards = nurbs::coneTowards(cb, na->ball.center, na->ball.radius + nb->ball.radius);
+      if (!nurbs::mayHoldCritical(*na, towards, true) || !nurbs::mayHoldCritical(*nb, rotated(towards, R_BA_), true))
+        return;
+    }
+    // Overlapping hulls prove nothing about surfaces (at distance >= 0): their depth is not worth measuring; the
+    // separating-axis bound GJK leaves (negative) still orders the deeper overlaps first. GJK stops as soon as
+    // its bound prunes the pair.
+    const double prune = best_.value - 0.5 * tolerance_ + margin;
+    const nurbs::HullDistance c =
+        nurbs::hullDistance(na->points, nb->points, X_AB_, startA, startB, 0.25 * tolerance_, kHullGjkCap, prune);
     iterations_ += c.iterations;
-    const double lower = std::min(c.lowerBound, c.distance) - margin;
+    const double lower = c.lower - margin;
     if (lower >= best_.value - 0.5 * tolerance_) {
       lowerOfPruned_ = std::min(lowerOfPruned_, lower);
       return;
@@ -321,7 +355,6 @@ class PairSearch {
   double lowerOfClosed_ = std::numeric_limits<double>::infinity();  // pairs at the depth cap
   double lowerOfPruned_ = std::numeric_limits<double>::infinity();  // pairs dropped by their bound
   int iterations_ = 0;
-  std::vector<Eigen::Vector3d> hullA_, hullB_;
   std::vector<NewtonEnd> ends_;
   std::vector<ConvexRegion> regions_;
   std::vector<std::unique_ptr<Node>> arena_;
