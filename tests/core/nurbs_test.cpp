@@ -180,7 +180,8 @@ TEST(NurbsTree, MemoryReportCountsNodesStartSetAndForms) {
   for (int k = 0; k < 200; ++k) m->closestPoint(Vec(U(rng), U(rng), 0.4 * U(rng)));
   std::size_t nodes = 0, forms = 0, formCount = 0;
   std::function<void(const nurbs::PatchNode&)> visit = [&](const nurbs::PatchNode& n) {
-    nodes += sizeof(nurbs::PatchNode) + (n.depth > 0 ? n.net.net.size() * sizeof(Eigen::Vector4d) : 0);
+    nodes += sizeof(nurbs::PatchNode) + n.points.size() * sizeof(Eigen::Vector3d) +
+             (n.depth > 0 ? n.net.net.size() * sizeof(Eigen::Vector4d) : 0);
     if (n.gradient) {
       ++formCount;
       std::size_t doubles = n.gradient->pu.capacity() + n.gradient->pv.capacity();

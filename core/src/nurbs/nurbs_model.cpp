@@ -219,7 +219,9 @@ std::string NurbsModel::describe() const {
 }
 
 std::size_t NurbsModel::patchTreeBytes() const {
-  return forest_->bytes.load() + forest_->roots.size() * sizeof(nurbs::PatchNode);
+  std::size_t roots = 0;  // the roots' nets are the patches' (counted with them); their points are the tree's
+  for (const auto& root : forest_->roots) roots += sizeof(nurbs::PatchNode) + root->points.capacity() * sizeof(Eigen::Vector3d);
+  return forest_->bytes.load() + roots;
 }
 
 std::vector<StructureReport> NurbsModel::structures() const {

@@ -216,8 +216,8 @@ void tangentCones(const RationalBezierPatch& patch, Cone& cu, Cone& cv) {
 namespace {
 
 /// The frame box of a node: third axis along its normal cone (or Su x Sv of the cone axes), first along Su.
-FrameBox frameBoxOf(const RationalBezierPatch& net, const BoundingSphere& ball, const Cone& cu, const Cone& cv,
-                    const Cone& normal) {
+FrameBox frameBoxOf(const std::vector<Eigen::Vector3d>& points, const BoundingSphere& ball, const Cone& cu,
+                    const Cone& cv, const Cone& normal) {
   FrameBox box;
   Eigen::Vector3d e3 = Eigen::Vector3d::UnitZ();
   if (!normal.all) {
@@ -234,8 +234,8 @@ FrameBox frameBoxOf(const RationalBezierPatch& net, const BoundingSphere& ball, 
   box.axes.row(2) = e3;
   box.lo.setConstant(std::numeric_limits<double>::infinity());
   box.hi.setConstant(-std::numeric_limits<double>::infinity());
-  for (const Eigen::Vector4d& h : net.net) {
-    const Eigen::Vector3d y = box.axes * (Eigen::Vector3d(h.head<3>() / h[3]) - ball.center);
+  for (const Eigen::Vector3d& p : points) {
+    const Eigen::Vector3d y = box.axes * (p - ball.center);
     box.lo = box.lo.cwiseMin(y);
     box.hi = box.hi.cwiseMax(y);
   }
@@ -285,7 +285,7 @@ std::unique_ptr<PatchNode> makeNode(RationalBezierPatch net, int patch, int dept
   for (const Eigen::Vector4d& h : n->net.net) n->points.push_back(h.head<3>() / h[3]);
   tangentCones(n->net, n->cu, n->cv);
   n->normal = crossCone(n->cu, n->cv);
-  n->box = frameBoxOf(n->net, n->ball, n->cu, n->cv, n->normal);
+  n->box = frameBoxOf(n->points, n->ball, n->cu, n->cv, n->normal);
   const int p = n->net.degreeU, q = n->net.degreeV;
   n->corners = {n->net.point(0, 0), n->net.point(p, 0), n->net.point(0, q), n->net.point(p, q)};
   return n;
