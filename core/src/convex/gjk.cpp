@@ -156,11 +156,7 @@ SubSimplex s3d(const Vector3d* p) {
 double ConvexScale::roundoff() const { return 8 * kEps * std::max(coordMag, size); }
 
 SupportPoint minkowskiSupport(const SupportFn& a, const SupportFn& b, const Vector3d& d) {
-  SupportPoint s;
-  s.a = a(d);
-  s.b = b(-d);
-  s.w = s.a - s.b;
-  return s;
+  return minkowskiSupportOf(a, b, d);
 }
 
 SubSimplex closestOnSimplex(const Vector3d* points, int n) {
@@ -206,27 +202,7 @@ ConvexDistance convexDistance(const SupportFn& a, const SupportFn& b, double tol
   // Any point of D starts GJK. (Starting from the support opposite the centre of D's box saves a few
   // iterations on round shapes but costs six support pairs up front: slower overall on boxes and cones.)
   const SupportPoint start = minkowskiSupport(a, b, -Vector3d::UnitX());
-  GjkResult g = gjk(a, b, start, lower, tol, maxIterations, scale);
-  out.iterations = g.iterations;
-  // A separated run can stall on a degenerate simplex (a box vertex against a rim, a needle-thin triangle)
-  // before its bounds meet. Restarting from a single support point along the best direction so far drops the
-  // degenerate simplex and keeps the proved lower bound; keep the tighter answer.
-  for (int restart = 0; restart < 4 && !g.converged && !g.originInside && g.lowerBound > 0 &&
-                        out.iterations < maxIterations;
-       ++restart) {
-    const SupportPoint fresh = minkowskiSupport(a, b, -g.v);
-    GjkResult again = gjk(a, b, fresh, g.lowerBound, tol, maxIterations - out.iterations, scale);
-    out.iterations += again.iterations;
-    if (again.originInside) break;  // rounding-level contact: let the first answer and EPA decide
-    again.lowerBound = std::max(again.lowerBound, g.lowerBound);
-    if (again.upperBound <= g.upperBound) {
-      g = again;
-    } else {
-      g.lowerBound = again.lowerBound;
-      g.converged = g.upperBound - g.lowerBound <= tol && g.witnessGap <= tol;
-      if (again.iterations <= 1) break;  // no progress possible from here
-    }
-  }
+  const GjkResult g = gjkWithRestarts(a, b, start, lower, tol, maxIterations, scale, out.iterations);
   lower = g.lowerBound;
   double upper = g.upperBound;
   double witnessGap = g.witnessGap;

@@ -102,4 +102,33 @@ GjkResult gjkLoop(const SupportA& a, const SupportB& b, const SupportPoint& star
   return r;
 }
 
+/// gjkLoop, and then, for a separated run that stalled on a degenerate simplex (a box vertex against a rim, a
+/// needle-thin triangle) before its bounds met, up to four restarts from a single support point along the best
+/// direction so far: that drops the degenerate simplex and keeps the proved lower bound; the tighter answer is
+/// kept. `iterations` counts every run's.
+template <typename SupportA, typename SupportB>
+GjkResult gjkWithRestarts(const SupportA& a, const SupportB& b, const SupportPoint& start, double lowerBound,
+                          double tolerance, int maxIterations, ConvexScale& scale, int& iterations,
+                          double stopAbove = std::numeric_limits<double>::infinity()) {
+  GjkResult g = gjkLoop(a, b, start, lowerBound, tolerance, maxIterations, scale, stopAbove);
+  iterations = g.iterations;
+  for (int restart = 0; restart < 4 && !g.converged && !g.originInside && g.lowerBound > 0 &&
+                        g.lowerBound < stopAbove && iterations < maxIterations;
+       ++restart) {
+    const SupportPoint fresh = minkowskiSupportOf(a, b, Eigen::Vector3d(-g.v));
+    GjkResult again = gjkLoop(a, b, fresh, g.lowerBound, tolerance, maxIterations - iterations, scale, stopAbove);
+    iterations += again.iterations;
+    if (again.originInside) break;  // rounding-level contact: let the first answer (and EPA) decide
+    again.lowerBound = std::max(again.lowerBound, g.lowerBound);
+    if (again.upperBound <= g.upperBound) {
+      g = again;
+    } else {
+      g.lowerBound = again.lowerBound;
+      g.converged = g.upperBound - g.lowerBound <= tolerance && g.witnessGap <= tolerance;
+      if (again.iterations <= 1) break;  // no progress possible from here
+    }
+  }
+  return g;
+}
+
 }  // namespace unidist::detail

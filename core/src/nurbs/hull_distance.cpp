@@ -18,28 +18,9 @@ HullDistance hullDistance(const std::vector<Eigen::Vector3d>& a, const std::vect
   start.a = startA;
   start.b = startB;
   start.w = startA - startB;
-  GjkResult g = detail::gjkLoop(supportA, supportB, start,
-                                -std::numeric_limits<double>::infinity(), tolerance, maxIterations, scale, stopAbove);
-  int iterations = g.iterations;
-  // As convexDistance does: a separated run stalled on a degenerate simplex restarts from one support point
-  // along the best direction so far, keeping the proved bound and the tighter answer.
-  for (int restart = 0; restart < 4 && !g.converged && !g.originInside && g.lowerBound > 0 &&
-                        g.lowerBound < stopAbove && iterations < maxIterations;
-       ++restart) {
-    const SupportPoint fresh = detail::minkowskiSupportOf(supportA, supportB, Eigen::Vector3d(-g.v));
-    GjkResult again =
-        detail::gjkLoop(supportA, supportB, fresh, g.lowerBound, tolerance, maxIterations - iterations, scale, stopAbove);
-    iterations += again.iterations;
-    if (again.originInside) break;
-    again.lowerBound = std::max(again.lowerBound, g.lowerBound);
-    if (again.upperBound <= g.upperBound) {
-      g = again;
-    } else {
-      g.lowerBound = again.lowerBound;
-      g.converged = g.upperBound - g.lowerBound <= tolerance && g.witnessGap <= tolerance;
-      if (again.iterations <= 1) break;
-    }
-  }
+  int iterations = 0;
+  const GjkResult g = detail::gjkWithRestarts(supportA, supportB, start, -std::numeric_limits<double>::infinity(),
+                                              tolerance, maxIterations, scale, iterations, stopAbove);
   HullDistance out;
   out.lower = std::min(g.lowerBound, (g.pointB - g.pointA).norm());
   out.pointA = g.pointA;
