@@ -148,7 +148,8 @@ TEST(NurbsSurface, InvalidInputIsNamed) {
 
 // ---- subdivision tree: proved balls and cones -------------------------------------------------------------
 
-/// Visits every node of the forest down to `depth` (building it) and checks balls and cones by dense sampling.
+/// Visits every node of the forest down to `depth` (building it) and checks balls, frame boxes and cones by dense
+/// sampling. A box that is proved but loose would pass too: the box must also be thin across a flat node.
 void checkNodesBySampling(const NurbsModel& m, int depth) {
   std::vector<std::unique_ptr<nurbs::PatchNode>> arena;
   std::function<void(const nurbs::PatchNode&)> visit = [&](const nurbs::PatchNode& n) {
@@ -158,6 +159,7 @@ void checkNodesBySampling(const NurbsModel& m, int depth) {
         const double s = n.s0 + (n.s1 - n.s0) * i / 12.0, t = n.t0 + (n.t1 - n.t0) * j / 12.0;
         const SurfaceDerivatives d = P.derivatives(s, t);
         ASSERT_LE((d.point - n.ball.center).norm(), n.ball.radius) << "patch " << n.patch << " depth " << n.depth;
+        ASSERT_EQ(nurbs::boxDistance(n, d.point), 0.0) << "outside its frame box, patch " << n.patch << " depth " << n.depth;
         auto inside = [](const nurbs::Cone& c, const Vec& v) {
           return c.all || v.norm() < 1e-12 || std::atan2(c.axis.cross(v).norm(), c.axis.dot(v)) <= c.angle;
         };
@@ -165,6 +167,11 @@ void checkNodesBySampling(const NurbsModel& m, int depth) {
         ASSERT_TRUE(inside(n.cv, d.dv)) << "Sv outside its cone, patch " << n.patch << " depth " << n.depth;
         ASSERT_TRUE(inside(n.normal, d.du.cross(d.dv))) << "normal outside its cone, patch " << n.patch << " depth " << n.depth;
       }
+    // Across a nearly flat node the box is as thin as the node is curved, far thinner than the ball.
+    if (!n.normal.all && n.normal.angle < 0.1) {
+      const double thickness = n.box.hi[2] - n.box.lo[2];
+      EXPECT_LT(thickness, 0.5 * n.ball.radius) << "frame box not thin, patch " << n.patch << " depth " << n.depth;
+    }
     if (n.depth < depth)
       for (const nurbs::PatchNode* c : m.forest().children(n, arena)) visit(*c);
   };
