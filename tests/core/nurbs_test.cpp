@@ -200,7 +200,9 @@ TEST(NurbsTree, MemoryReportCountsNodesStartSetAndForms) {
   };
   for (const auto& root : m->forest().roots) visit(*root);
   const nurbs::StartSet& start = nurbs::startSet(m->forest());
-  const std::size_t startBytes = start.samples.size() * (sizeof(nurbs::StartSet::Sample) + 4 * sizeof(double)) +
+  // The start set's arrays: a grid point (three coordinates) per sample, a ball (four numbers) per cut node.
+  const std::size_t startBytes = sizeof(nurbs::StartSet) +
+                                 start.samples.size() * (sizeof(nurbs::StartSet::Sample) + 3 * sizeof(double)) +
                                  start.nodes.size() * (sizeof(const nurbs::PatchNode*) + 4 * sizeof(double));
   EXPECT_GT(formCount, 0u);
   std::size_t reported = 0;

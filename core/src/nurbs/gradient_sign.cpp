@@ -108,7 +108,7 @@ int signAwayFromPoles(const std::vector<double>& g, int a, int b, const bool pol
 /// component along the edge never zero, or the other pointing out of the patch), collapsed edges aside (a
 /// pole: every point there is within `negligible` of the corner the search evaluates). Without the strip rule
 /// every piece at a pole would fail (S_s vanishes along it) and be split down to the tolerance.
-/// `signs` are those of all of u and all of v (signOfAll; the common case, no pole, needs no other pass).
+/// `signs` are those of all of u and all of v (combine's; the common case, no pole, needs no other pass).
 bool noMinimum(const GradientForm& F, const std::vector<double>& u, const std::vector<double>& v, const int signs[2],
                const PatchNode& n, double margin, double negligible) {
   const bool s0 = n.s0 == 0, s1 = n.s1 == 1, t0 = n.t0 == 0, t1 = n.t1 == 1;
@@ -143,8 +143,9 @@ std::shared_ptr<const GradientForm> makeForm(const PatchNode& n) {
   F->centre = n.ball.center;
   // Largest coordinate, largest and smallest weight, and largest distance from the centre.
   double scale = 0, wmax = 0, wmin = std::numeric_limits<double>::infinity(), reach = 0;
-  for (const Eigen::Vector4d& h : net.net) {
-    const Eigen::Vector3d P = h.head<3>() / h[3];
+  for (std::size_t k = 0; k < net.net.size(); ++k) {
+    const Eigen::Vector4d& h = net.net[k];
+    const Eigen::Vector3d& P = n.points[k];
     scale = std::max(scale, P.cwiseAbs().maxCoeff());
     wmax = std::max(wmax, h[3]);
     wmin = std::min(wmin, h[3]);

@@ -92,7 +92,7 @@ class SupportObjective final : public Objective {
   // the ball's rounding allowance.
   double lowerBound(const PatchNode& n) const override {
     double most = -std::numeric_limits<double>::infinity();
-    for (const Eigen::Vector4d& h : n.net.net) most = std::max(most, d_.dot(h.head<3>() / h[3]));
+    for (const Eigen::Vector3d& p : n.points) most = std::max(most, d_.dot(p));
     return -most - 256 * std::numeric_limits<double>::epsilon() * (n.ball.center.cwiseAbs().maxCoeff() + n.ball.radius);
   }
   Cone criticalDirections(const BoundingSphere&) const override { return makeCone(d_.normalized(), 0.0); }

@@ -34,7 +34,7 @@ struct Open {
 }  // namespace
 
 void Objective::startRanks(const StartSet& start, double* out) const {
-  for (std::size_t k = 0; k < start.points.size(); ++k) out[k] = rank(start.points[k]);
+  for (std::size_t k = 0; k < start.samples.size(); ++k) out[k] = rank(start.point(k));
 }
 
 void Objective::startBounds(const StartSet& start, double below, double* out) const {
@@ -165,7 +165,8 @@ SearchResult minimise(const PatchForest& forest, const std::vector<RationalBezie
     }
   if (least < std::numeric_limits<double>::infinity()) {
     const auto offerSample = [&](std::size_t k) {
-      offer({start.samples[k].patch, start.samples[k].s, start.samples[k].t, f.value(start.points[k]), start.points[k]});
+      const Eigen::Vector3d p = start.point(k);
+      offer({start.samples[k].patch, start.samples[k].s, start.samples[k].t, f.value(p), p});
     };
     offerSample(seed);
     const double ties = keep;  // no other sample is better than the seed, so the threshold stays

@@ -42,9 +42,9 @@ class Objective {
   /// Proved: no point of the node is a local minimum over its patch, patch corners and points within
   /// `negligible` of a corner aside (gradient_sign.h). Asked of a small flat node before its Newton run.
   virtual bool provesNoMinimum(const PatchNode& n, const PatchForest& forest, double negligible) const = 0;
-  /// rank() of every start sample, and lowerBound() of every start node where it is below `below` (+inf
-  /// elsewhere), into `out` (sized by the caller; start_set.h): one call for the whole set, which the point
-  /// query makes a vectorised loop.
+  /// rank() of every start sample, and per start node its lowerBound() where that may be below `below` (where
+  /// not, any value >= below), into `out` (sized by the caller; start_set.h): one call for the whole set, which
+  /// the point query makes a vectorised loop.
   virtual void startRanks(const StartSet& start, double* out) const;
   virtual void startBounds(const StartSet& start, double below, double* out) const;
 };

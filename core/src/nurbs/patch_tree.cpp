@@ -189,19 +189,19 @@ bool mayHoldCritical(const PatchNode& n, const Cone& towards, bool corners) {
   return (edgeU && canBeOrthogonal(n.cv, towards)) || (edgeV && canBeOrthogonal(n.cu, towards));
 }
 
-void controlPoints(const PatchNode& n, std::vector<Eigen::Vector3d>& out) { out = n.points; }
-
-void controlPoints(const PatchNode& n, const Eigen::Isometry3d& X, std::vector<Eigen::Vector3d>& out) {
-  out.clear();
-  for (const Eigen::Vector3d& p : n.points) out.push_back(X * p);
+BoundingSphere ballOfNet(const std::vector<Eigen::Vector4d>& net) {
+  std::vector<Eigen::Vector3d> points;
+  points.reserve(net.size());
+  for (const Eigen::Vector4d& h : net) points.push_back(h.head<3>() / h[3]);
+  return ballOfPoints(points);
 }
 
-BoundingSphere ballOfNet(const std::vector<Eigen::Vector4d>& net) {
+BoundingSphere ballOfPoints(const std::vector<Eigen::Vector3d>& points) {
   Aabb box;
-  for (const Eigen::Vector4d& h : net) box.extend(h.head<3>() / h[3]);
+  for (const Eigen::Vector3d& p : points) box.extend(p);
   BoundingSphere b;
   b.center = box.center();
-  for (const Eigen::Vector4d& h : net) b.radius = std::max(b.radius, (h.head<3>() / h[3] - b.center).norm());
+  for (const Eigen::Vector3d& p : points) b.radius = std::max(b.radius, (p - b.center).norm());
   // Widen for the rounding of the subdivided net and of this computation (relative to the coordinates' size).
   const double scale = b.center.cwiseAbs().maxCoeff() + b.radius;
   b.radius += 256 * std::numeric_limits<double>::epsilon() * scale;
@@ -280,9 +280,9 @@ std::unique_ptr<PatchNode> makeNode(RationalBezierPatch net, int patch, int dept
   n->s1 = s1;
   n->t0 = t0;
   n->t1 = t1;
-  n->ball = ballOfNet(n->net.net);
   n->points.reserve(n->net.net.size());
   for (const Eigen::Vector4d& h : n->net.net) n->points.push_back(h.head<3>() / h[3]);
+  n->ball = ballOfPoints(n->points);
   tangentCones(n->net, n->cu, n->cv);
   n->normal = crossCone(n->cu, n->cv);
   n->box = frameBoxOf(n->points, n->ball, n->cu, n->cv, n->normal);

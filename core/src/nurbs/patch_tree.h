@@ -44,6 +44,8 @@ bool canBeOrthogonal(const Cone& a, const Cone& b);
 
 /// Proved ball around the Euclidean control points (convex hull property), widened for rounding.
 BoundingSphere ballOfNet(const std::vector<Eigen::Vector4d>& net);
+/// The same for Euclidean points.
+BoundingSphere ballOfPoints(const std::vector<Eigen::Vector3d>& points);
 /// Bernstein coefficients of the numerator X_u W − X W_u of Su divided by the degree p (degree (2p − 1, 2q),
 /// u-major), computed from the Euclidean points so that equal points give exactly zero. With transpose, those
 /// of Sv with u and v swapped (v-major).
@@ -87,10 +89,6 @@ double boxDistance(const PatchNode& n, const Eigen::Vector3d& q);
 /// `corners`, a node holding a patch corner always can (a corner extremum obeys no equation).
 bool mayHoldCritical(const PatchNode& n, const Cone& towards, bool corners);
 
-/// The node's Euclidean control points into `out` (replacing its contents): their hull holds the subpatch
-/// (positive weights). The second form maps them by X first.
-void controlPoints(const PatchNode& n, std::vector<Eigen::Vector3d>& out);
-void controlPoints(const PatchNode& n, const Eigen::Isometry3d& X, std::vector<Eigen::Vector3d>& out);
 
 struct PatchForest {
   std::vector<std::unique_ptr<PatchNode>> roots;

@@ -12,11 +12,17 @@ std::shared_ptr<const StartSet> makeStartSet(const PatchForest& forest) {
   }
   const int cells = 1 << out->depth, side = cells + 1;
   std::vector<std::unique_ptr<PatchNode>> arena;  // stays empty: the cut is within the cached depth
+  const std::size_t samples = forest.roots.size() * static_cast<std::size_t>(side * side);
+  out->samples.reserve(samples);
+  out->nodes.reserve(count);
+  for (std::vector<double>* v : {&out->px, &out->py, &out->pz}) v->reserve(samples);
+  for (std::vector<double>* v : {&out->cx, &out->cy, &out->cz, &out->radius}) v->reserve(count);
+  std::vector<Eigen::Vector3d> points;
   for (const auto& root : forest.roots) {
     const std::size_t first = out->samples.size();
     for (int i = 0; i < side; ++i)
       for (int j = 0; j < side; ++j) out->samples.push_back({root->patch, double(i) / cells, double(j) / cells});
-    out->points.resize(out->samples.size());
+    points.resize(out->samples.size());
     // Depth first down to the cut; every corner of every cut node is a grid point.
     std::vector<const PatchNode*> stack{root.get()};
     while (!stack.empty()) {
@@ -30,10 +36,10 @@ std::shared_ptr<const StartSet> makeStartSet(const PatchForest& forest) {
       const int i0 = static_cast<int>(n->s0 * cells + 0.5), i1 = static_cast<int>(n->s1 * cells + 0.5);
       const int j0 = static_cast<int>(n->t0 * cells + 0.5), j1 = static_cast<int>(n->t1 * cells + 0.5);
       const int at[4] = {i0 * side + j0, i1 * side + j0, i0 * side + j1, i1 * side + j1};
-      for (int k = 0; k < 4; ++k) out->points[first + static_cast<std::size_t>(at[k])] = n->corners[static_cast<std::size_t>(k)];
+      for (int k = 0; k < 4; ++k) points[first + static_cast<std::size_t>(at[k])] = n->corners[static_cast<std::size_t>(k)];
     }
   }
-  for (const Eigen::Vector3d& p : out->points) {
+  for (const Eigen::Vector3d& p : points) {
     out->px.push_back(p.x());
     out->py.push_back(p.y());
     out->pz.push_back(p.z());
@@ -44,8 +50,7 @@ std::shared_ptr<const StartSet> makeStartSet(const PatchForest& forest) {
     out->cz.push_back(n->ball.center.z());
     out->radius.push_back(n->ball.radius);
   }
-  forest.bytes += out->samples.size() * (sizeof(StartSet::Sample) + 4 * sizeof(double)) +
-                  out->nodes.size() * (sizeof(const PatchNode*) + 4 * sizeof(double));
+  forest.bytes += out->bytes();
   return out;
 }
 

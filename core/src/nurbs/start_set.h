@@ -23,11 +23,18 @@ struct StartSet {
     int patch;
     double s, t;  // local parameters of the patch
   };
-  std::vector<Sample> samples;          // the grid (2^depth + 1)² per patch
-  std::vector<Eigen::Vector3d> points;  // the surface point of each sample (a node corner)
-  // The same, coordinate by coordinate, for loops the compiler vectorises: the samples' points, and the
-  // nodes' ball centres and radii.
+  std::vector<Sample> samples;  // the grid (2^depth + 1)² per patch
+  // Coordinate by coordinate, for loops the compiler vectorises: each sample's surface point (a node corner),
+  // and the nodes' ball centres and radii.
   std::vector<double> px, py, pz, cx, cy, cz, radius;
+  Eigen::Vector3d point(std::size_t k) const { return {px[k], py[k], pz[k]}; }
+  /// The memory its arrays take.
+  std::size_t bytes() const {
+    std::size_t doubles = 0;
+    for (const std::vector<double>* v : {&px, &py, &pz, &cx, &cy, &cz, &radius}) doubles += v->capacity();
+    return sizeof(StartSet) + samples.capacity() * sizeof(Sample) + nodes.capacity() * sizeof(const PatchNode*) +
+           doubles * sizeof(double);
+  }
 };
 
 /// The forest's start set, made on first call.

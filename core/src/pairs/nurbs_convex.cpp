@@ -54,12 +54,11 @@ class NodeBounds {
       lastHullApart_ = false;
       return atCentre - n.ball.radius;
     }
-    nurbs::controlPoints(n, points_);
     // A hull overlapping B bounds its surface points' signed distance by the hulls' separating-axis bound as
     // well as by their depth: EPA is not run (against a thin B — a plate 1e-7 thick — it dominated the
     // overlap search: 12 s for one depth query, 3 s without).
     const ConvexDistance c =
-        convexDistance(supportOfPointSet(points_), supportB_, 0.25 * tolerance_, kNodeGjkCap, false);
+        convexDistance(supportOfPointSet(n.points), supportB_, 0.25 * tolerance_, kNodeGjkCap, false);
     iterations += c.iterations;
     lastWitnessB_ = c.pointB;
     lastHullApart_ = c.distance > 0;
@@ -84,7 +83,6 @@ class NodeBounds {
   const PosedModel& bInA_;
   double tolerance_;
   SupportFn supportB_;
-  std::vector<Eigen::Vector3d> points_;
   Eigen::Vector3d lastWitnessB_ = Eigen::Vector3d::Zero();
   bool lastHullApart_ = false;
 };

@@ -174,13 +174,12 @@ class NurbsMeshSearch {
     // edge, orthogonal to the edge); the mesh side obeys no such rule at its edges and vertices.
     const nurbs::Cone towards = nurbs::coneTowards(cb, na->ball.center, na->ball.radius + sb.radius);
     if (!nurbs::mayHoldCritical(*na, towards, true)) return;
-    nurbs::controlPoints(*na, hullA_);
     const mesh::BvhNode& n = bvh_.tree.nodes[nb];
     double lower = kInf;
     Eigen::Vector3d witness = cb;
     auto hullBound = [&](const Points& other) {
       // Surfaces are at distance >= 0: EPA on overlapping hulls would measure nothing useful.
-      const ConvexDistance c = convexDistance(supportOfPointSet(hullA_), supportOfPointSet(other), 0.25 * tolerance_, kHullGjkCap, false);
+      const ConvexDistance c = convexDistance(supportOfPointSet(na->points), supportOfPointSet(other), 0.25 * tolerance_, kHullGjkCap, false);
       iterations_ += c.iterations;
       const double l = std::min(c.lowerBound, c.distance) - margin;
       if (l < lower) {
@@ -222,7 +221,7 @@ class NurbsMeshSearch {
   double lowerOfClosed_ = kInf;  // pairs at the depth cap
   double lowerOfPruned_ = kInf;  // pairs dropped by their bound
   int iterations_ = 0;
-  Points hullA_, hullB_;
+  Points hullB_;
   std::vector<std::unique_ptr<Node>> arena_;
   std::priority_queue<OpenPair, std::vector<OpenPair>, std::greater<OpenPair>> open_;
 };

@@ -1,5 +1,6 @@
 #include "pairs/nurbs_nurbs.h"
 
+#include "cloud/point_support.h"
 #include "generic/generic_distance.h"
 #include "nurbs/hull_distance.h"
 #include "nurbs/pair_convexity.h"
@@ -205,7 +206,7 @@ class PairSearch {
     Eigen::Vector2d st(0.5 * (n.s0 + n.s1), 0.5 * (n.t0 + n.t1));
     for (int i = 0; i <= du; ++i)
       for (int j = 0; j <= dv; ++j)
-        if (const double d = (n.net.point(i, j) - p).squaredNorm(); d < nearest) {
+        if (const double d = (n.points[static_cast<std::size_t>(i * (dv + 1) + j)] - p).squaredNorm(); d < nearest) {
           nearest = d;
           st = {n.s0 + (n.s1 - n.s0) * i / std::max(du, 1), n.t0 + (n.t1 - n.t0) * j / std::max(dv, 1)};
         }
@@ -281,16 +282,12 @@ class PairSearch {
   /// and −n (A's frame), where GJK starts.
   double hullGap(const Node& na, const Node& nb, const Eigen::Vector3d& n, Eigen::Vector3d& supportA,
                  Eigen::Vector3d& supportB) const {
-    std::size_t ia = 0, ib = 0;
-    double highA = -std::numeric_limits<double>::infinity(), lowB = -highA;
-    for (std::size_t i = 0; i < na.points.size(); ++i)
-      if (const double v = n.dot(na.points[i]); v > highA) highA = v, ia = i;
     const Eigen::Vector3d nB = R_BA_ * n;
-    for (std::size_t i = 0; i < nb.points.size(); ++i)
-      if (const double v = nB.dot(nb.points[i]); v < lowB) lowB = v, ib = i;
-    supportA = na.points[ia];
-    supportB = X_AB_ * nb.points[ib];
-    return n.dot(X_AB_.translation()) + lowB - highA;
+    const Eigen::Vector3d& pA = supportOfPoints(na.points, n);
+    const Eigen::Vector3d& pB = supportOfPoints(nb.points, -nB);
+    supportA = pA;
+    supportB = X_AB_ * pB;
+    return n.dot(X_AB_.translation()) + nB.dot(pB) - n.dot(pA);
   }
 
   /// hint: a direction from A toward B along which the pair is likely separated (the parent's), or zero.
