@@ -1,6 +1,7 @@
 // The NURBS pair routines (core/src/pairs/nurbs_convex.cpp, nurbs_nurbs.cpp) against analytic truth: the
 // exact rational sphere and torus, so every distance has a closed form (a ball against a solid is the
 // solid's signed distance at the centre minus the radius, also when penetrating a convex solid).
+#include "bench/nurbs_truth.h"
 #include "mesh_fixtures.h"
 #include "nurbs_fixtures.h"
 #include "unidist/distance.h"
@@ -118,6 +119,33 @@ TEST(NurbsNurbs, SphereAgainstTorusSeparatedIsExactAndCertified) {
     expectBracket(r, truth, 1e-12);
   }
   EXPECT_GE(measured, 8);
+}
+
+// Tori in random poses: the solids are the core circles widened by the tube radius, so apart they are the
+// circles' distance less 2a apart. Most closest pairs lie on the outer, convex parts (the support plane settles
+// them), some on the inner saddles.
+TEST(NurbsNurbs, RandomlyPlacedToriAreExactAndCertified) {
+  const double R = 1, a = 0.25;
+  const auto torus = solid(torusSurface(R, a));
+  std::mt19937 rng(17);
+  int measured = 0;
+  for (int k = 0; k < 80 && measured < 16; ++k) {
+    const Eigen::Isometry3d XB = randomPose(rng, 2);
+    const nurbs_truth::Circle ca{Vec::Zero(), Vec::UnitZ(), R}, cb{XB.translation(), XB.linear() * Vec::UnitZ(), R};
+    const double truth = nurbs_truth::circleCircle(ca, cb) - 2 * a;
+    if (truth < 0.02) continue;
+    ++measured;
+    for (double tolerance : {1e-3, 1e-9}) {
+      DistanceOptions opt;
+      opt.tolerance = tolerance;
+      const DistanceResult r = distance(*torus, Eigen::Isometry3d::Identity(), *torus, XB, opt);
+      EXPECT_EQ(std::string(r.method), "nurbs-nurbs-cones-newton");
+      EXPECT_EQ(r.status, Status::Certified);
+      expectBracket(r, truth, 1e-12);
+      EXPECT_LE(r.upperBound - r.lowerBound, tolerance);
+    }
+  }
+  EXPECT_GE(measured, 12);
 }
 
 TEST(NurbsNurbs, NearlyTouchingSpheresAreProvedApart) {

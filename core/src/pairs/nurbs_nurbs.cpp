@@ -6,6 +6,7 @@
 #include "nurbs/pair_convexity.h"
 #include "nurbs/pair_newton.h"
 #include "nurbs/patch_tree.h"
+#include "nurbs/support_bound.h"
 #include "unidist/nurbs.h"
 
 #include <algorithm>
@@ -62,6 +63,7 @@ class PairSearch {
 
   Outcome run() {
     seed();
+    updatePlane();
     for (const auto& ra : a_.forest().roots)
       for (const auto& rb : b_.forest().roots) visit(ra.get(), rb.get());
     seedFromLowestPairs();
@@ -75,6 +77,8 @@ class PairSearch {
       open_.pop();
       ++popped;
       if (settledByRegion(*top.a, *top.b)) continue;
+      updatePlane();
+      if (settledByPlane(*top.a, *top.b, roundingMargin(*top.a, X_AB_ * top.b->ball.center, *top.b))) continue;
       certifyAround(*top.a, *top.b);
       if (settledByRegion(*top.a, *top.b)) continue;
       ++iterations_;
@@ -180,6 +184,87 @@ class PairSearch {
         size *= std::min(0.9, std::sqrt(0.6 / c.ratio));
       }
     }
+  }
+
+  /// The plane through the best pair's points, normal to their segment: every pair of nodes is at least
+  /// (B's least height above it) − (A's greatest height) apart. Heights from the control points, or where their
+  /// bulge decides, certified exactly (support_bound.h): near a locally convex contact the nodes holding the
+  /// closest points are settled by it, at any size.
+  struct SupportPlane {
+    double forBest = std::numeric_limits<double>::quiet_NaN();  // the best value it was made for
+    Eigen::Vector3d n = Eigen::Vector3d::Zero(), nB = Eigen::Vector3d::Zero();  // A's frame; nB = R_BA n
+    double atA = 0, atB = 0;  // n·pA, n·pB
+    // Both surfaces curve away from the plane at the best pair. Only then is it used: elsewhere (a saddle on
+    // either side) it settles few pairs that the parent's direction does not, and costs a scan per visit.
+    bool convexContact = false;
+    std::vector<std::pair<const Node*, double>> certifiedA, certifiedB;  // A's greatest, B's least height (±inf: not proved)
+  };
+
+  void updatePlane() {
+    if (plane_.forBest == best_.value || !std::isfinite(best_.value)) return;
+    plane_ = {};
+    plane_.forBest = best_.value;
+    const Eigen::Vector3d gap = best_.pB - best_.pA;
+    if (!(gap.norm() > 0)) return;
+    plane_.n = gap.normalized();
+    plane_.nB = R_BA_ * plane_.n;
+    plane_.atA = plane_.n.dot(best_.pA);
+    plane_.atB = plane_.n.dot(best_.pB);
+    plane_.convexContact =
+        curvesAway(a_.patches()[static_cast<std::size_t>(best_.patchA)], best_.x.head<2>(), plane_.n) &&
+        curvesAway(b_.patches()[static_cast<std::size_t>(best_.patchB)], best_.x.tail<2>(), -plane_.nB);
+  }
+
+  /// Does the surface at (s, t) curve away from the plane through it normal to n (on n's side), to first
+  /// approximation: the height n·S has a negative semidefinite Hessian there (a flat direction allowed)?
+  static bool curvesAway(const RationalBezierPatch& patch, const Eigen::Vector2d& st, const Eigen::Vector3d& n) {
+    const SurfaceDerivatives d = patch.derivatives(st[0], st[1]);
+    const double uu = n.dot(d.duu), uv = n.dot(d.duv), vv = n.dot(d.dvv);
+    const double flat = 1e-9 * (d.duu.norm() + d.duv.norm() + d.dvv.norm());
+    return uu <= flat && vv <= flat && (flat - uu) * (flat - vv) >= uv * uv;
+  }
+
+  static double cached(std::vector<std::pair<const Node*, double>>& cache, const Node& node,
+                       const Eigen::Vector3d& direction) {
+    // Normals every way: no direction sees the node curving away from it (and the cone test cannot say).
+    if (node.normal.all) return std::numeric_limits<double>::infinity();
+    for (const auto& [key, value] : cache)
+      if (key == &node) return value;
+    const nurbs::SupportBound b = nurbs::certifySupport(node.net, direction);
+    const double value = b.proved ? b.upper : std::numeric_limits<double>::infinity();
+    cache.emplace_back(&node, value);
+    return value;
+  }
+
+  /// The plane's lower bound for the pair (without the rounding margin).
+  double planeGap(const Node& na, const Node& nb) {
+    const Eigen::Vector3d& n = plane_.n;
+    double maxA = n.dot(supportOfPoints(na.points, n));
+    double minB = n.dot(X_AB_.translation()) + plane_.nB.dot(supportOfPoints(nb.points, -plane_.nB));
+    const double needed = best_.value - 0.5 * tolerance_;
+    if (minB - maxA >= needed) return minB - maxA;
+    // A certified height is no better than the highest surface point known, a corner: certify only when the
+    // corners leave room (around a saddle they cross the plane).
+    const bool tryA = maxA > plane_.atA, tryB = minB < plane_.atB;
+    double cornerA = -std::numeric_limits<double>::infinity(), cornerB = std::numeric_limits<double>::infinity();
+    for (int k = 0; k < 4; ++k) {
+      cornerA = std::max(cornerA, n.dot(na.corners[static_cast<std::size_t>(k)]));
+      cornerB = std::min(cornerB, plane_.nB.dot(nb.corners[static_cast<std::size_t>(k)]));
+    }
+    cornerB += n.dot(X_AB_.translation());
+    if ((tryB ? cornerB : minB) - (tryA ? cornerA : maxA) < needed) return minB - maxA;
+    if (tryA) maxA = std::min(maxA, cached(plane_.certifiedA, na, n));
+    if (tryB) minB = std::max(minB, n.dot(X_AB_.translation()) - cached(plane_.certifiedB, nb, -plane_.nB));
+    return minB - maxA;
+  }
+
+  /// margin: the rounding allowance of visit().
+  bool settledByPlane(const Node& na, const Node& nb, double margin) {
+    if (!plane_.convexContact) return false;
+    const double lower = planeGap(na, nb) - margin;
+    if (lower < best_.value - 0.5 * tolerance_) return false;
+    lowerOfPruned_ = std::min(lowerOfPruned_, lower);
+    return true;
   }
 
   static bool isFlat(const Node& n) { return !n.normal.all && n.normal.angle <= kFlatAngle; }
@@ -290,22 +375,28 @@ class PairSearch {
     return n.dot(X_AB_.translation()) + nB.dot(pB) - n.dot(pA);
   }
 
+  /// Rounding of the subdivided nets: the same 256 ulps the nodes' balls are widened by (cb: B's ball centre in
+  /// A's frame).
+  static double roundingMargin(const Node& na, const Eigen::Vector3d& cb, const Node& nb) {
+    const double eps = 256 * std::numeric_limits<double>::epsilon();
+    return eps * (na.ball.center.norm() + na.ball.radius + cb.norm() + nb.ball.radius);
+  }
+
   /// hint: a direction from A toward B along which the pair is likely separated (the parent's), or zero.
   void visit(const Node* na, const Node* nb, const Eigen::Vector3d& hint = Eigen::Vector3d::Zero()) {
     const Eigen::Vector3d cb = X_AB_ * nb->ball.center;
-    // Rounding of the subdivided nets: the same 256 ulps the nodes' balls are widened by.
-    const double eps = 256 * std::numeric_limits<double>::epsilon();
-    const double margin = eps * (na->ball.center.norm() + na->ball.radius + cb.norm() + nb->ball.radius);
+    const double margin = roundingMargin(*na, cb, *nb);
     // Balls first: a pair they already prune needs no GJK.
     const double byBalls = (cb - na->ball.center).norm() - na->ball.radius - nb->ball.radius - margin;
     if (byBalls >= best_.value - 0.5 * tolerance_) {
       lowerOfPruned_ = std::min(lowerOfPruned_, byBalls);
       return;
     }
-    if (settledByRegion(*na, *nb)) return;
+    if (settledByRegion(*na, *nb) || settledByPlane(*na, *nb, margin)) return;
     // The hulls' gap along one direction is a proved bound too: along the parent pair's closest-point direction
     // (or between the balls' centres) it often prunes the pair without running GJK. (Along the best pair's
-    // direction as well: more instructions than the GJK runs it saves.)
+    // direction from the control points alone: more instructions than the GJK runs it saves; the support plane
+    // above certifies that direction's heights, and only at a convex contact.)
     const Eigen::Vector3d start = hint.squaredNorm() > 0 ? hint : Eigen::Vector3d(cb - na->ball.center);
     Eigen::Vector3d startA = na->points.front(), startB = X_AB_ * nb->points.front();
     if (const double n = start.norm(); n > 0) {
@@ -354,6 +445,7 @@ class PairSearch {
   int iterations_ = 0;
   std::vector<NewtonEnd> ends_;
   std::vector<ConvexRegion> regions_;
+  SupportPlane plane_;
   std::vector<std::unique_ptr<Node>> arena_;
   std::priority_queue<OpenPair, std::vector<OpenPair>, std::greater<OpenPair>> open_;
 };
