@@ -15,9 +15,11 @@ using Basis = std::array<double, kMaxNurbsDegree + 1>;
 /// Bernstein polynomials of degree p at x and their first and second derivatives (entries 0..p).
 void basis(int p, double x, Basis& b0, Basis& b1, Basis& b2) {
   // Degrees 0 up to p in place in b0, degrees p − 1 and p − 2 copied on the way: the derivatives are made of
-  // them. They are kept shifted by one and two places, so B_k with k < 0 or above its degree reads zero.
+  // them. They are kept shifted by one and two places with zeros around, so B_k outside 0..degree reads zero.
   const std::size_t n = static_cast<std::size_t>(p);
-  std::array<double, kMaxNurbsDegree + 3> lower1{}, lower2{};  // lower1[k + 1] = B_k^(p−1), lower2[k + 2] = B_k^(p−2)
+  std::array<double, kMaxNurbsDegree + 3> lower1, lower2;  // lower1[k + 1] = B_k^(p−1), lower2[k + 2] = B_k^(p−2)
+  std::fill_n(lower1.begin(), n + 2, 0.0);
+  std::fill_n(lower2.begin(), n + 3, 0.0);
   b0[0] = 1;
   if (n == 1) lower1[1] = 1;
   if (n == 2) lower2[2] = 1;
@@ -25,8 +27,8 @@ void basis(int p, double x, Basis& b0, Basis& b1, Basis& b2) {
     b0[d] = x * b0[d - 1];
     for (std::size_t k = d - 1; k > 0; --k) b0[k] = (1 - x) * b0[k] + x * b0[k - 1];
     b0[0] *= 1 - x;
-    if (d + 1 == n) std::copy(b0.begin(), b0.begin() + static_cast<std::ptrdiff_t>(d + 1), lower1.begin() + 1);
-    if (d + 2 == n) std::copy(b0.begin(), b0.begin() + static_cast<std::ptrdiff_t>(d + 1), lower2.begin() + 2);
+    if (d + 1 == n) std::copy_n(b0.begin(), d + 1, lower1.begin() + 1);
+    if (d + 2 == n) std::copy_n(b0.begin(), d + 1, lower2.begin() + 2);
   }
   for (std::size_t k = 0; k <= n; ++k) {
     b1[k] = p * (lower1[k] - lower1[k + 1]);
@@ -60,21 +62,18 @@ struct Heights {
     basis(q, t, t0, t1, t2);
     A = {};
     W = {};
-    for (int i = 0; i <= p; ++i)
-      for (int j = 0; j <= q; ++j) {
-        const std::size_t k = static_cast<std::size_t>(i * (q + 1) + j);
-        const std::size_t si = static_cast<std::size_t>(i), tj = static_cast<std::size_t>(j);
-        const double terms[6] = {s0[si] * t0[tj], s1[si] * t0[tj], s0[si] * t1[tj],
-                                 s2[si] * t0[tj], s1[si] * t1[tj], s0[si] * t2[tj]};
-        for (auto [jet, c] : {std::pair<Jet*, double>{&A, a[k]}, {&W, w[k]}}) {
-          jet->f += c * terms[0];
-          jet->fs += c * terms[1];
-          jet->ft += c * terms[2];
-          jet->fss += c * terms[3];
-          jet->fst += c * terms[4];
-          jet->ftt += c * terms[5];
-        }
+    // Each row contracted along t (value, first, second derivative), then the rows along s.
+    for (std::size_t i = 0; i <= static_cast<std::size_t>(p); ++i) {
+      const std::size_t row = i * static_cast<std::size_t>(q + 1);
+      double a0 = 0, a1 = 0, a2 = 0, w0 = 0, w1 = 0, w2 = 0;
+      for (std::size_t j = 0; j <= static_cast<std::size_t>(q); ++j) {
+        const double ca = a[row + j], cw = w[row + j];
+        a0 += ca * t0[j], a1 += ca * t1[j], a2 += ca * t2[j];
+        w0 += cw * t0[j], w1 += cw * t1[j], w2 += cw * t2[j];
       }
+      A.f += s0[i] * a0, A.fs += s1[i] * a0, A.fss += s2[i] * a0, A.ft += s0[i] * a1, A.fst += s1[i] * a1, A.ftt += s0[i] * a2;
+      W.f += s0[i] * w0, W.fs += s1[i] * w0, W.fss += s2[i] * w0, W.ft += s0[i] * w1, W.fst += s1[i] * w1, W.ftt += s0[i] * w2;
+    }
   }
 };
 
@@ -169,7 +168,8 @@ Eigen::Vector2d maximiser(const Heights& h, Eigen::Vector2d x, Quotient at) {
         at = next;
       }
     }
-    if (!accepted || moved <= 4 * kEps) break;
+    // Newton converges quadratically: after a step this short the next would move x by ~its square.
+    if (!accepted || moved <= 1e-9) break;
   }
   return x;
 }
