@@ -86,7 +86,18 @@ PairHit polishPair(const RationalBezierPatch& a, const RationalBezierPatch& b, c
       if (trial == x) break;
       const Eval et = evaluate(a, b, X_AB, trial);
       ++evaluations;
-      if (et.value < e.value) {
+      // Near the end the distance is flat to rounding while the gradient, which the convexity certificate
+      // starts from, still shrinks: a short plain Newton step is judged by the gradient, and one that does not
+      // shrink it ends the run (damping it would only spend evaluations on rounding noise).
+      bool better = et.value < e.value;
+      if (mu == 0 && !better && (trial - x).cwiseAbs().maxCoeff() < 1e-7) {
+        Eigen::Vector4d gt;
+        Eigen::Matrix4d Ht;
+        derivatives(et, gt, Ht);
+        if (!(gt.cwiseProduct(free).norm() < g.norm())) break;
+        better = true;
+      }
+      if (better) {
         accepted = true;
         const double moved = (trial - x).cwiseAbs().maxCoeff();
         x = trial;
