@@ -148,6 +148,39 @@ TEST(NurbsNurbs, RandomlyPlacedToriAreExactAndCertified) {
   EXPECT_GE(measured, 12);
 }
 
+// The support plane's certified heights at tiny and huge scales: the benchmark's tilted tori (a convex contact)
+// and two spheres 1e-6 of their size apart, scaled by 1e-4 and 1e4.
+TEST(NurbsNurbs, ConvexContactsAtExtremeScalesAreExactAndCertified) {
+  const Eigen::Isometry3d tilted = [] {
+    Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+    X.translate(Vec(2.6, 0.3, 0.4));
+    X.rotate(Eigen::AngleAxisd(0.7, Vec(1, 1, 0).normalized()));
+    return X;
+  }();
+  const nurbs_truth::Circle ca{Vec::Zero(), Vec::UnitZ(), 1}, cb{tilted.translation(), tilted.linear() * Vec::UnitZ(), 1};
+  const double toriTruth = nurbs_truth::circleCircle(ca, cb) - 0.5;
+  for (double scale : {1e-4, 1e4}) {
+    SCOPED_TRACE(scale);
+    DistanceOptions opt;
+    opt.tolerance = 1e-9 * scale;
+    const auto torus = solid(torusSurface(1, 0.25, scale));
+    Eigen::Isometry3d X = tilted;
+    X.translation() *= scale;
+    const DistanceResult r = distance(*torus, Eigen::Isometry3d::Identity(), *torus, X, opt);
+    EXPECT_EQ(r.status, Status::Certified);
+    expectBracket(r, toriTruth * scale, 1e-12 * scale);
+
+    const auto sphere = solid(sphereSurface(scale));
+    Eigen::Isometry3d XB = Eigen::Isometry3d::Identity();
+    const double gap = 1e-6 * scale;
+    XB.translation() = Vec(0.3, -0.5, 0.8).normalized() * (2 * scale + gap);
+    const DistanceResult s = distance(*sphere, Eigen::Isometry3d::Identity(), *sphere, XB, opt);
+    EXPECT_EQ(s.status, Status::Certified);
+    EXPECT_GT(s.lowerBound, 0);
+    expectBracket(s, gap, 1e-12 * scale);
+  }
+}
+
 TEST(NurbsNurbs, NearlyTouchingSpheresAreProvedApart) {
   const auto s = solid(sphereSurface(1));
   DistanceOptions opt;
