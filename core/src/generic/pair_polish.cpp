@@ -12,7 +12,9 @@ namespace unidist::detail {
 namespace {
 
 constexpr int kMaxPolishSteps = 64;
-constexpr double kSettledWidth = 1e-13;  // relative to the model's size: the rounding of the searches' bounds
+// Relative to the model's size: the rounding of the searches' bounds (256 ulps of the coordinates on each side,
+// and the certified values' own allowances).
+constexpr double kSettledWidth = 2e-13;
 
 /// The parameters of the control point nearest to p_M (Greville abscissae): where Newton starts to find the
 /// parameters of a point on the surface.
@@ -71,7 +73,7 @@ struct Projector {
 void polishSeparation(const PosedModel& a, const PosedModel& b, DistanceResult& r, double tolerance) {
   if (!(r.lowerBound > 0) || !(r.distance > 0)) return;
   if (a.model.type() != ModelType::Nurbs && b.model.type() != ModelType::Nurbs) return;
-  // Bounds already within rounding of each other (1e-13 of the NURBS model's size): the polish could not move the
+  // Bounds already within rounding of each other (2e-13 of the NURBS model's size): the polish could not move the
   // distance by more, and its projections cost as much as a small search.
   double size = 0;
   for (const PosedModel* m : {&a, &b})

@@ -95,6 +95,9 @@ Quotient quotient(const Jet& A, const Jet& W) {
   return r;
 }
 
+/// The larger degree.
+int largerDegree(const Heights& h) { return std::max(h.p, h.q); }
+
 /// The Greville point of the highest control point: where the maximiser search starts.
 Eigen::Vector2d highestGreville(const Heights& h) {
   std::size_t best = 0;
@@ -202,7 +205,9 @@ SupportBound certifySupport(const RationalBezierPatch& patch, const Eigen::Vecto
     for (double t : {0.0, 1.0}) linear = std::max(linear, grad.dot(Eigen::Vector2d(s, t) - x0));
   double scale = 0;
   for (std::size_t k = 0; k < h.a.size(); ++k) scale = std::max(scale, std::abs(h.a[k]) + std::abs(c) * h.w[k]);
-  const double roundingOfH = 4 * kEps * scale;  // h_c(x0) is zero but for rounding
+  // h_c(x0) is zero but for rounding, and the tangent plane's gradient is rounded too: a Bernstein sum of
+  // (p + 1)(q + 1) terms is off by ~(p + q + 2)·ε·scale, its derivatives by the degree times that.
+  const double roundingOfH = 4 * (largerDegree(h) + 1) * (h.p + h.q + 2) * kEps * scale;
   return {true, c + (linear + delta + roundingOfH) / wLow};
 }
 
