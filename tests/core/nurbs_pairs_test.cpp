@@ -11,6 +11,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <random>
@@ -151,24 +152,20 @@ TEST(NurbsNurbs, RandomlyPlacedToriAreExactAndCertified) {
 // The support plane's certified heights at tiny and huge scales: the benchmark's tilted tori (a convex contact)
 // and two spheres 1e-6 of their size apart, scaled by 1e-4 and 1e4.
 TEST(NurbsNurbs, ConvexContactsAtExtremeScalesAreExactAndCertified) {
-  const Eigen::Isometry3d tilted = [] {
-    Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
-    X.translate(Vec(2.6, 0.3, 0.4));
-    X.rotate(Eigen::AngleAxisd(0.7, Vec(1, 1, 0).normalized()));
-    return X;
-  }();
-  const nurbs_truth::Circle ca{Vec::Zero(), Vec::UnitZ(), 1}, cb{tilted.translation(), tilted.linear() * Vec::UnitZ(), 1};
-  const double toriTruth = nurbs_truth::circleCircle(ca, cb) - 0.5;
+  const std::vector<nurbs_truth::Placement> placements = nurbs_truth::placements();
+  const auto tilted = std::find_if(placements.begin(), placements.end(),
+                                   [](const auto& p) { return std::string(p.name) == "torus-torus tilted"; });
+  ASSERT_NE(tilted, placements.end());
   for (double scale : {1e-4, 1e4}) {
     SCOPED_TRACE(scale);
     DistanceOptions opt;
     opt.tolerance = 1e-9 * scale;
     const auto torus = solid(torusSurface(1, 0.25, scale));
-    Eigen::Isometry3d X = tilted;
+    Eigen::Isometry3d X = tilted->X_WB;
     X.translation() *= scale;
     const DistanceResult r = distance(*torus, Eigen::Isometry3d::Identity(), *torus, X, opt);
     EXPECT_EQ(r.status, Status::Certified);
-    expectBracket(r, toriTruth * scale, 1e-12 * scale);
+    expectBracket(r, tilted->truth * scale, 1e-12 * scale);
 
     const auto sphere = solid(sphereSurface(scale));
     Eigen::Isometry3d XB = Eigen::Isometry3d::Identity();

@@ -29,11 +29,20 @@ Eval evaluate(const RationalBezierPatch& pa, const RationalBezierPatch& pb, cons
   return e;
 }
 
+/// The residual's Jacobian in (s, t, u, v).
+Eigen::Matrix<double, 3, 4> jacobian(const Eval& e) {
+  Eigen::Matrix<double, 3, 4> J;
+  J << e.a.du, e.a.dv, -e.b.du, -e.b.dv;
+  return J;
+}
+
+/// Gradient of ½|S_A − S_B|² in (s, t, u, v).
+Eigen::Vector4d gradient(const Eval& e) { return jacobian(e).transpose() * (e.a.point - e.b.point); }
+
 /// Gradient and Hessian of ½|S_A − S_B|² in (s, t, u, v).
 void derivatives(const Eval& e, Eigen::Vector4d& g, Eigen::Matrix4d& H) {
   const Eigen::Vector3d r = e.a.point - e.b.point;
-  Eigen::Matrix<double, 3, 4> J;
-  J << e.a.du, e.a.dv, -e.b.du, -e.b.dv;
+  const Eigen::Matrix<double, 3, 4> J = jacobian(e);
   g = J.transpose() * r;
   H = J.transpose() * J;
   H(0, 0) += r.dot(e.a.duu);
@@ -91,10 +100,7 @@ PairHit polishPair(const RationalBezierPatch& a, const RationalBezierPatch& b, c
       // shrink it ends the run (damping it would only spend evaluations on rounding noise).
       bool better = et.value < e.value;
       if (mu == 0 && !better && (trial - x).cwiseAbs().maxCoeff() < 1e-7) {
-        Eigen::Vector4d gt;
-        Eigen::Matrix4d Ht;
-        derivatives(et, gt, Ht);
-        if (!(gt.cwiseProduct(free).norm() < g.norm())) break;
+        if (!(gradient(et).cwiseProduct(free).norm() < g.norm())) break;
         better = true;
       }
       if (better) {

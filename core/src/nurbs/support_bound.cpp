@@ -1,47 +1,20 @@
 #include "nurbs/support_bound.h"
 
+#include "nurbs/bspline.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
+#include <vector>
 
 namespace unidist::nurbs {
 namespace {
 
 constexpr double kEps = std::numeric_limits<double>::epsilon();
 constexpr int kNewtonSteps = 12;
-using Basis = std::array<double, kMaxNurbsDegree + 1>;
 
-/// Bernstein polynomials of degree p at x and their first and second derivatives (entries 0..p).
-void basis(int p, double x, Basis& b0, Basis& b1, Basis& b2) {
-  // Degrees 0 up to p in place in b0, degrees p − 1 and p − 2 copied on the way: the derivatives are made of
-  // them. They are kept shifted by one and two places with zeros around, so B_k outside 0..degree reads zero.
-  const std::size_t n = static_cast<std::size_t>(p);
-  std::array<double, kMaxNurbsDegree + 3> lower1, lower2;  // lower1[k + 1] = B_k^(p−1), lower2[k + 2] = B_k^(p−2)
-  std::fill_n(lower1.begin(), n + 2, 0.0);
-  std::fill_n(lower2.begin(), n + 3, 0.0);
-  b0[0] = 1;
-  if (n == 1) lower1[1] = 1;
-  if (n == 2) lower2[2] = 1;
-  for (std::size_t d = 1; d <= n; ++d) {
-    b0[d] = x * b0[d - 1];
-    for (std::size_t k = d - 1; k > 0; --k) b0[k] = (1 - x) * b0[k] + x * b0[k - 1];
-    b0[0] *= 1 - x;
-    if (d + 1 == n) std::copy_n(b0.begin(), d + 1, lower1.begin() + 1);
-    if (d + 2 == n) std::copy_n(b0.begin(), d + 1, lower2.begin() + 2);
-  }
-  for (std::size_t k = 0; k <= n; ++k) {
-    b1[k] = p * (lower1[k] - lower1[k + 1]);
-    b2[k] = p * (p - 1) * (lower2[k] - 2 * lower2[k + 1] + lower2[k + 2]);
-  }
-}
-
-/// A scalar tensor-product polynomial and its derivatives up to order two at one point.
-struct Jet {
-  double f = 0, fs = 0, ft = 0, fss = 0, fst = 0, ftt = 0;
-};
-
-/// n·X (a) and W (w) of the patch.
+/// n·X (a) and W (w) of the patch: the Bernstein coefficients of h_c = a − c·w.
 struct Heights {
   int p, q;
   std::vector<double> a, w;
@@ -56,42 +29,31 @@ struct Heights {
   }
   double coefficient(const std::vector<double>& c, int i, int j) const { return c[static_cast<std::size_t>(i * (q + 1) + j)]; }
 
-  void evaluate(double s, double t, Jet& A, Jet& W) const {
-    Basis s0, s1, s2, t0, t1, t2;
-    basis(p, s, s0, s1, s2);
-    basis(q, t, t0, t1, t2);
-    A = {};
-    W = {};
-    // Each row contracted along t (value, first, second derivative), then the rows along s.
-    for (std::size_t i = 0; i <= static_cast<std::size_t>(p); ++i) {
-      const std::size_t row = i * static_cast<std::size_t>(q + 1);
-      double a0 = 0, a1 = 0, a2 = 0, w0 = 0, w1 = 0, w2 = 0;
-      for (std::size_t j = 0; j <= static_cast<std::size_t>(q); ++j) {
-        const double ca = a[row + j], cw = w[row + j];
-        a0 += ca * t0[j], a1 += ca * t1[j], a2 += ca * t2[j];
-        w0 += cw * t0[j], w1 += cw * t1[j], w2 += cw * t2[j];
-      }
-      A.f += s0[i] * a0, A.fs += s1[i] * a0, A.fss += s2[i] * a0, A.ft += s0[i] * a1, A.fst += s1[i] * a1, A.ftt += s0[i] * a2;
-      W.f += s0[i] * w0, W.fs += s1[i] * w0, W.fss += s2[i] * w0, W.ft += s0[i] * w1, W.fst += s1[i] * w1, W.ftt += s0[i] * w2;
-    }
+  /// W at (s, t).
+  double weight(double s, double t) const {
+    std::array<std::array<double, kMaxNurbsDegree + 1>, 3> bs, bt;
+    bernstein(p, s, bs);
+    bernstein(q, t, bt);
+    double sum = 0;
+    for (int i = 0; i <= p; ++i)
+      for (int j = 0; j <= q; ++j)
+        sum += bs[0][static_cast<std::size_t>(i)] * bt[0][static_cast<std::size_t>(j)] * coefficient(w, i, j);
+    return sum;
   }
 };
 
-/// g = A / W, its gradient and Hessian, from the jets (quotient rule).
-struct Quotient {
+/// g = n·S, its gradient and Hessian at (s, t), from the patch's exact derivatives.
+struct Height {
   double g;
   Eigen::Vector2d grad;
   Eigen::Matrix2d hess;
 };
-Quotient quotient(const Jet& A, const Jet& W) {
-  Quotient r;
-  r.g = A.f / W.f;
-  const double gs = (A.fs - r.g * W.fs) / W.f, gt = (A.ft - r.g * W.ft) / W.f;
-  r.grad = {gs, gt};
-  const double gss = (A.fss - 2 * gs * W.fs - r.g * W.fss) / W.f;
-  const double gtt = (A.ftt - 2 * gt * W.ft - r.g * W.ftt) / W.f;
-  const double gst = (A.fst - gs * W.ft - gt * W.fs - r.g * W.fst) / W.f;
-  r.hess << gss, gst, gst, gtt;
+Height heightAt(const RationalBezierPatch& patch, const Eigen::Vector3d& n, const Eigen::Vector2d& x) {
+  const SurfaceDerivatives d = patch.derivatives(x[0], x[1]);
+  Height r;
+  r.g = n.dot(d.point);
+  r.grad = {n.dot(d.du), n.dot(d.dv)};
+  r.hess << n.dot(d.duu), n.dot(d.duv), n.dot(d.duv), n.dot(d.dvv);
   return r;
 }
 
@@ -134,8 +96,7 @@ bool concave(const Heights& h, double c, double& delta) {
 
 /// The maximiser of n·S over [0,1]², by projected Newton from x (where n·S has its value and derivatives `at`):
 /// a local maximiser, the global one where h_c is concave.
-Eigen::Vector2d maximiser(const Heights& h, Eigen::Vector2d x, Quotient at) {
-  Jet A, W;
+Eigen::Vector2d maximiser(const RationalBezierPatch& patch, const Eigen::Vector3d& n, Eigen::Vector2d x, Height at) {
   for (int step = 0; step < kNewtonSteps; ++step) {
     // Coordinates held at a bound the gradient pushes against stay there.
     Eigen::Vector2d d = Eigen::Vector2d::Zero();
@@ -162,8 +123,7 @@ Eigen::Vector2d maximiser(const Heights& h, Eigen::Vector2d x, Quotient at) {
     double moved = 0;
     for (int halving = 0; halving < 8 && !accepted; ++halving, d *= 0.5) {
       const Eigen::Vector2d y = (x + d).cwiseMax(0.0).cwiseMin(1.0);
-      h.evaluate(y[0], y[1], A, W);
-      const Quotient next = quotient(A, W);
+      const Height next = heightAt(patch, n, y);
       if (next.g >= at.g - noise) {
         accepted = true;
         moved = (y - x).cwiseAbs().maxCoeff();
@@ -190,16 +150,16 @@ SupportBound certifySupport(const RationalBezierPatch& patch, const Eigen::Vecto
   // Concavity for the value at the start first: where it fails (a saddle, a node curving toward the plane)
   // the maximiser is not worth searching for.
   const Eigen::Vector2d start = highestGreville(h);
-  Jet A, W;
-  h.evaluate(start[0], start[1], A, W);
+  const Height atStart = heightAt(patch, n, start);
   double delta = 0;
-  if (!concave(h, A.f / W.f, delta)) return {};
-  const Eigen::Vector2d x0 = maximiser(h, start, quotient(A, W));
-  h.evaluate(x0[0], x0[1], A, W);
-  const double c = A.f / W.f;
+  if (!concave(h, atStart.g, delta)) return {};
+  const Eigen::Vector2d x0 = maximiser(patch, n, start, atStart);
+  const Height at = heightAt(patch, n, x0);
+  const double c = at.g;
   if (!std::isfinite(c) || !concave(h, c, delta)) return {};
-  // The tangent plane of h_c at x0, largest at a corner of the unit square.
-  const Eigen::Vector2d grad(A.fs - c * W.fs, A.ft - c * W.ft);
+  // The tangent plane of h_c = W·(n·S − c) at x0, where n·S = c: its gradient is W(x0)·∇(n·S). Largest at a
+  // corner of the unit square.
+  const Eigen::Vector2d grad = h.weight(x0[0], x0[1]) * at.grad;
   double linear = 0;
   for (double s : {0.0, 1.0})
     for (double t : {0.0, 1.0}) linear = std::max(linear, grad.dot(Eigen::Vector2d(s, t) - x0));

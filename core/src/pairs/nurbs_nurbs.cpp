@@ -239,8 +239,8 @@ class PairSearch {
   /// The plane's lower bound for the pair (without the rounding margin).
   double planeGap(const Node& na, const Node& nb) {
     const Eigen::Vector3d& n = plane_.n;
-    double maxA = n.dot(supportOfPoints(na.points, n));
-    double minB = n.dot(X_AB_.translation()) + plane_.nB.dot(supportOfPoints(nb.points, -plane_.nB));
+    const HullHeights hull = hullHeights(na, nb, n, plane_.nB);
+    double maxA = hull.greatestA, minB = hull.leastB;
     const double needed = best_.value - 0.5 * tolerance_;
     if (minB - maxA >= needed) return minB - maxA;
     // A certified height is no better than the highest surface point known, a corner: certify only when the
@@ -251,10 +251,10 @@ class PairSearch {
       cornerA = std::max(cornerA, n.dot(na.corners[static_cast<std::size_t>(k)]));
       cornerB = std::min(cornerB, plane_.nB.dot(nb.corners[static_cast<std::size_t>(k)]));
     }
-    cornerB += n.dot(X_AB_.translation());
-    if ((tryB ? cornerB : minB) - (tryA ? cornerA : maxA) < needed) return minB - maxA;
+    const double shiftB = n.dot(X_AB_.translation());  // B's heights are taken in B's frame
+    if ((tryB ? shiftB + cornerB : minB) - (tryA ? cornerA : maxA) < needed) return minB - maxA;
     if (tryA) maxA = std::min(maxA, cached(plane_.certifiedA, na, n));
-    if (tryB) minB = std::max(minB, n.dot(X_AB_.translation()) - cached(plane_.certifiedB, nb, -plane_.nB));
+    if (tryB) minB = std::max(minB, shiftB - cached(plane_.certifiedB, nb, -plane_.nB));
     return minB - maxA;
   }
 
@@ -367,12 +367,23 @@ class PairSearch {
   /// and −n (A's frame), where GJK starts.
   double hullGap(const Node& na, const Node& nb, const Eigen::Vector3d& n, Eigen::Vector3d& supportA,
                  Eigen::Vector3d& supportB) const {
-    const Eigen::Vector3d nB = R_BA_ * n;
+    const HullHeights h = hullHeights(na, nb, n, R_BA_ * n);
+    supportA = *h.pointA;
+    supportB = X_AB_ * *h.pointB;
+    return h.leastB - h.greatestA;
+  }
+
+  /// Along unit n (A's frame; nB = R_BA n): the greatest height of A's control points and the least of B's
+  /// (B's in A's frame: n·(X p) = n·t + nB·p), and the points attaining them (each in its own frame).
+  struct HullHeights {
+    double greatestA, leastB;
+    const Eigen::Vector3d* pointA;
+    const Eigen::Vector3d* pointB;
+  };
+  HullHeights hullHeights(const Node& na, const Node& nb, const Eigen::Vector3d& n, const Eigen::Vector3d& nB) const {
     const Eigen::Vector3d& pA = supportOfPoints(na.points, n);
     const Eigen::Vector3d& pB = supportOfPoints(nb.points, -nB);
-    supportA = pA;
-    supportB = X_AB_ * pB;
-    return n.dot(X_AB_.translation()) + nB.dot(pB) - n.dot(pA);
+    return {n.dot(pA), n.dot(X_AB_.translation()) + nB.dot(pB), &pA, &pB};
   }
 
   /// Rounding of the subdivided nets: the same 256 ulps the nodes' balls are widened by (cb: B's ball centre in
