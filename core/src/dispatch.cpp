@@ -10,6 +10,7 @@
 #include "pairs/nurbs_mesh.h"
 #include "pairs/nurbs_nurbs.h"
 #include "pairs/torus_pairs.h"
+#include "unidist/nurbs.h"
 #include "unidist/primitives.h"
 
 #include <algorithm>
@@ -80,6 +81,15 @@ DistanceResult nurbsMeshPair(const PosedModel& a, const PosedModel& b, const Que
   return nurbsMesh(a, b, ctx);
 }
 
+/// A torus (a) against a NURBS model (b): a solid NURBS model meets the torus's exact NURBS form in the
+/// NURBS–NURBS search (a certified separation in microseconds, where the generic routine takes milliseconds to
+/// seconds); an open one goes to the generic routine.
+DistanceResult torusNurbsPair(const PosedModel& a, const PosedModel& b, const QueryContext& ctx) {
+  if (!b.model.isSolid()) return genericPair(a, b, ctx);
+  const PosedModel exact{static_cast<const Torus&>(a.model).asNurbs(), a.X_WM};
+  return nurbsNurbs(exact, b, ctx);
+}
+
 DistanceResult dispatchByShape(const PosedModel& a, const PosedModel& b, const QueryContext& ctx);
 
 /// Sphere first: one point query is exact against any convex solid and for any separation; a penetration
@@ -113,6 +123,7 @@ class DispatchTable {
     add(T::Mesh, T::PointCloud, &meshPair, "mesh-cloud-bvh");
     add(T::PointCloud, T::PointCloud, &meshPair, "cloud-cloud-bvh");
     add(T::Nurbs, T::Mesh, &nurbsMeshPair, "nurbs-mesh-bvh");
+    add(T::Torus, T::Nurbs, &torusNurbsPair, "torus-as-nurbs");
   }
   const Cell& at(ModelType a, ModelType b) const { return cells_[index(a)][index(b)]; }
 

@@ -1,12 +1,15 @@
 // One surface–surface placement of nurbs_truth.h, ours only (no OpenCASCADE): for profiling and counting
 // instructions: valgrind --tool=callgrind --toggle-collect='*timedQueries*' counts the timed queries only (the
 // first query, which builds the cached trees, is outside).
-// usage: unidist_bench_nurbs_pair_profile [placement name or part of names] [repetitions] [tolerance]
-// prints per placement: the CPU time per query (median), the value, status, bounds and iterations.
+// usage: unidist_bench_nurbs_pair_profile [placement name or part of names] [repetitions] [tolerance] [primitive]
+// prints per placement: the CPU time per query (median), the value, status, bounds and iterations. With
+// "primitive" A is also the analytic torus primitive (the same torus): the route through its exact NURBS form,
+// beside the analytic routines (torus–torus circle search, sphere–torus) on the same placement.
 #include "bench/median.h"
 #include "bench/nurbs_truth.h"
 
 #include "unidist/distance.h"
+#include "unidist/primitives.h"
 
 #include <algorithm>
 #include <cstdio>
@@ -42,6 +45,7 @@ int main(int argc, char** argv) {
   const std::string filter = argc > 1 ? argv[1] : "";
   const int reps = argc > 2 ? std::atoi(argv[2]) : 21;
   const double tolerance = argc > 3 ? std::atof(argv[3]) : 1e-9;
+  const bool primitive = argc > 4 && std::string(argv[4]) == "primitive";
   const std::vector<nurbs_truth::Placement> placements = nurbs_truth::placements();
   // A whole name selects that placement alone (one name can be the start of another); otherwise a substring.
   const bool exact = std::any_of(placements.begin(), placements.end(), [&](const auto& p) { return filter == p.name; });
@@ -50,12 +54,22 @@ int main(int argc, char** argv) {
     const unidist::NurbsModel a({p.a}, true), b({p.b}, true);
     unidist::DistanceOptions options;
     options.tolerance = tolerance;
-    unidist::DistanceResult r = unidist::distance(a, Eigen::Isometry3d::Identity(), b, p.X_WB, options);
-    const std::vector<double> times = timedQueries(a, b, p.X_WB, options, reps, r);
-    std::printf("%-28s cpu %8.1f us  value %+.12f (truth %+.12f, error %.1e)  bounds [%+.12f, %+.12f]  %s  "
-                "iterations %d  width %.3g  %s\n",
-                p.name, median(times), r.distance, p.truth, r.distance - p.truth, r.lowerBound, r.upperBound,
-                unidist::toString(r.status), r.iterations, r.upperBound - r.lowerBound, r.method);
+    const auto run = [&](const char* label, const unidist::Model& ma, const unidist::Model& mb) {
+      unidist::DistanceResult r = unidist::distance(ma, Eigen::Isometry3d::Identity(), mb, p.X_WB, options);
+      const std::vector<double> times = timedQueries(ma, mb, p.X_WB, options, reps, r);
+      std::printf("%-28s %-18s cpu %9.1f us  value %+.12f (truth %+.12f, error %.1e)  bounds [%+.12f, %+.12f]  %s  "
+                  "iterations %d  width %.3g  %s\n",
+                  p.name, label, median(times), r.distance, p.truth, r.distance - p.truth, r.lowerBound,
+                  r.upperBound, unidist::toString(r.status), r.iterations, r.upperBound - r.lowerBound, r.method);
+    };
+    run("nurbs-nurbs", a, b);
+    if (!primitive) continue;
+    const unidist::Torus torus(1, 0.25);  // placements' A: the torus R = 1, a = 0.25
+    run("torus-prim-nurbs", torus, b);
+    const bool torusB = std::string(p.name).rfind("torus-torus", 0) == 0;
+    const unidist::Sphere sphere(0.4);  // placements' spheres
+    if (torusB) run("analytic", torus, torus);
+    else run("analytic", torus, sphere);
   }
   return 0;
 }

@@ -19,6 +19,7 @@
 namespace unidist {
 
 class TriangleMesh;
+class NurbsModel;
 
 /// Shared pieces of every primitive (no acceleration structure, constant memory).
 class Primitive : public Model {
@@ -156,9 +157,26 @@ class Torus final : public Primitive {
   std::string describe() const override;
   /// Point of the centre circle at angle theta: (R cos θ, R sin θ, 0).
   Eigen::Vector3d circlePoint(double theta) const;
+  std::size_t memoryBytes() const override;
+
+  /// The same solid as an exact rational NURBS model (the tube's rational quadratic circle revolved about z:
+  /// 16 biquadratic patches, on the torus to rounding), built on first use, once, thread-safely: a solid NURBS
+  /// model meets the torus through the NURBS–NURBS search on it.
+  const NurbsModel& asNurbs() const;
+  /// "exact-nurbs" (asNurbs() and the patch tree its queries have refined).
+  std::vector<StructureReport> structures() const override;
 
  private:
   double R_, r_;
+  /// Lazily built stand-in; a copy of the torus starts without one.
+  struct LazyNurbs {
+    LazyNurbs() = default;
+    LazyNurbs(const LazyNurbs&) {}
+    LazyNurbs& operator=(const LazyNurbs&) { return *this; }
+    mutable std::once_flag once;
+    mutable std::shared_ptr<const NurbsModel> model;
+    mutable std::atomic<const NurbsModel*> ready{nullptr};  // set once the model exists (for memoryBytes)
+  } lazyNurbs_;
 };
 
 /// Solid half-space n·x <= d (n unit after construction; d scaled by 1/|n|). Unbounded: its AABB is infinite,
