@@ -8,7 +8,9 @@
 //  * No point inside (or an open NURBS): best-first over (patch node, cloud node) pairs as in nurbs_mesh: balls,
 //    the normal-cone test, GJK between the subpatch's control-point hull and the cloud node's box (a leaf: its
 //    points); a cloud leaf met by a small enough patch node gets its points' queries, which settle it.
-// An exhausted budget answers with the bounds it has (status bounded). Internal.
+// An exhausted budget answers with the bounds it has (status bounded). A deepest point inside by no more than the
+// point query's unsure margin (1e-9 × the NURBS size, where its sign is not reliable) goes to the generic
+// routine. Internal.
 #pragma once
 
 #include "pairs/pair_query.h"
