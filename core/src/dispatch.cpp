@@ -6,6 +6,7 @@
 #include "pairs/box_box.h"
 #include "pairs/mesh_convex.h"
 #include "pairs/mesh_mesh.h"
+#include "pairs/nurbs_cloud.h"
 #include "pairs/nurbs_convex.h"
 #include "pairs/nurbs_mesh.h"
 #include "pairs/nurbs_nurbs.h"
@@ -124,6 +125,7 @@ class DispatchTable {
     add(T::PointCloud, T::PointCloud, &meshPair, "cloud-cloud-bvh");
     add(T::Nurbs, T::Mesh, &nurbsMeshPair, "nurbs-mesh-bvh");
     add(T::Torus, T::Nurbs, &torusNurbsPair, "torus-as-nurbs");
+    add(T::Nurbs, T::PointCloud, &nurbsCloud, "nurbs-cloud-bvh");
   }
   const Cell& at(ModelType a, ModelType b) const { return cells_[index(a)][index(b)]; }
 
