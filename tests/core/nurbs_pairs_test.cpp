@@ -178,6 +178,41 @@ TEST(NurbsNurbs, ConvexContactsAtExtremeScalesAreExactAndCertified) {
   }
 }
 
+// A contact on the torus's saddle side (the benchmark's sphere above the torus, and a sphere 1e-6 of the size
+// from the inner equator) at tiny and huge scales: the support ball's certificates (support_ball.h) carry the
+// bounds there; exact to 1e-12 of the size, certified.
+TEST(NurbsNurbs, SaddleContactsAtExtremeScalesAreExactAndCertified) {
+  const std::vector<nurbs_truth::Placement> placements = nurbs_truth::placements();
+  const auto above = std::find_if(placements.begin(), placements.end(),
+                                  [](const auto& p) { return std::string(p.name) == "torus-sphere above"; });
+  ASSERT_NE(above, placements.end());
+  for (double scale : {1e-4, 1.0, 1e4}) {
+    SCOPED_TRACE(scale);
+    DistanceOptions opt;
+    opt.tolerance = 1e-9 * scale;
+    const auto torus = solid(torusSurface(1, 0.25, scale));
+    const auto sphere = solid(sphereSurface(0.4 * scale));
+    Eigen::Isometry3d X = above->X_WB;
+    X.translation() *= scale;
+    const DistanceResult r = distance(*torus, Eigen::Isometry3d::Identity(), *sphere, X, opt);
+    EXPECT_EQ(r.status, Status::Certified);
+    expectBracket(r, above->truth * scale, 1e-12 * scale);
+    // A small sphere just inside the hole, off the torus's plane: its closest point on the inner side, a gap of
+    // 1e-6 of the size.
+    const Vec centre = scale * Vec(0.3, 0.1, 0.12);
+    const double gap = 1e-6 * scale;
+    const double toCircle = nurbs_truth::pointCircle(centre, {Vec::Zero(), Vec::UnitZ(), scale});
+    const double radius = toCircle - 0.25 * scale - gap;
+    const auto near = solid(sphereSurface(radius));
+    Eigen::Isometry3d XS = Eigen::Isometry3d::Identity();
+    XS.translation() = centre;
+    const DistanceResult s = distance(*torus, Eigen::Isometry3d::Identity(), *near, XS, opt);
+    EXPECT_EQ(s.status, Status::Certified);
+    EXPECT_GT(s.lowerBound, 0);
+    expectBracket(s, gap, 1e-12 * scale);
+  }
+}
+
 TEST(NurbsNurbs, NearlyTouchingSpheresAreProvedApart) {
   const auto s = solid(sphereSurface(1));
   DistanceOptions opt;

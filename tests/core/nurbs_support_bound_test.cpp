@@ -19,9 +19,10 @@ namespace {
 using namespace nurbs_fixtures;
 using Vec = Eigen::Vector3d;
 
-/// max of n·S over the patch by a 101² grid, then finer grids around the best sample (each 1/20 of the last
+/// max of f(S) over the patch by a 101² grid, then finer grids around the best sample (each 1/20 of the last
 /// one's span): below the true maximum by less than 1e-14 for these surfaces.
-double sampledSupport(const RationalBezierPatch& p, const Vec& n) {
+template <class F>
+double sampledMax(const RationalBezierPatch& p, const F& f) {
   double best = -std::numeric_limits<double>::infinity(), bs = 0.5, bt = 0.5;
   double span = 1, lo_s = 0, lo_t = 0;
   for (int level = 0; level < 6; ++level) {
@@ -31,13 +32,17 @@ double sampledSupport(const RationalBezierPatch& p, const Vec& n) {
     for (int i = 0; i <= count; ++i)
       for (int j = 0; j <= count; ++j) {
         const double s = std::clamp(s0 + i * step, 0.0, 1.0), t = std::clamp(t0 + j * step, 0.0, 1.0);
-        if (const double v = n.dot(p.evaluate(s, t)); v > best) best = v, bs = s, bt = t;
+        if (const double v = f(p.evaluate(s, t)); v > best) best = v, bs = s, bt = t;
       }
     span = 2 * step;
     lo_s = bs - step;
     lo_t = bt - step;
   }
   return best;
+}
+
+double sampledSupport(const RationalBezierPatch& p, const Vec& n) {
+  return sampledMax(p, [&](const Vec& x) { return n.dot(x); });
 }
 
 TEST(SupportBound, SpherePatchesFacingTheDirectionGiveTheRadius) {
@@ -132,6 +137,81 @@ TEST(SupportBound, RandomSubpatchesAndDirectionsAreNeverBelowTheSurface) {
     }
     EXPECT_GE(proved, tried / 20) << tried;  // not vacuous (random sizes and directions are mostly refused)
   }
+}
+
+// The distance extremes (the support ball's certificates): from a sphere's centre both are its radius, at
+// every scale and for every patch.
+TEST(DistanceExtreme, SphereSeenFromItsCentreIsItsRadiusAtEveryScale) {
+  for (double r : {1e-4, 1.0, 1e4}) {
+    const Vec centre = r * Vec(0.3, -0.2, 0.7);
+    const NurbsModel sphere({sphereSurface(r, centre)}, true);
+    for (const RationalBezierPatch& patch : sphere.patches())
+      for (bool farthest : {true, false}) {
+        const nurbs::DistanceExtreme e = nurbs::certifyDistanceExtreme(patch, centre, farthest);
+        ASSERT_TRUE(e.proved);
+        EXPECT_NEAR(e.value, r, 1e-13 * r) << farthest;
+        EXPECT_TRUE(farthest ? e.value >= r * (1 - 1e-15) : e.value <= r * (1 + 1e-15));
+      }
+  }
+}
+
+// Random subpatches of the three surfaces and random points: the value is always on the safe side of dense
+// sampling; and where the point sits on the normal through a surface point, past the centres of curvature
+// (farthest) or on the convex side (nearest), the sphere about it touches the subpatch there and the value is
+// exact to rounding.
+TEST(DistanceExtreme, RandomSubpatchesAreBoundedAndExactWhereASphereTouchesThem) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(0, 1), v(-1, 1);
+  for (const NurbsSurface& surface : {torusSurface(), sphereSurface(), wavySurface()}) {
+    const NurbsModel model({surface}, false);
+    const bool wavy = surface.degreeU() == 3;
+    int touching = 0, exact = 0;
+    for (int k = 0; k < 120; ++k) {
+      const RationalBezierPatch& patch = model.patches()[rng() % model.patches().size()];
+      const double size = std::ldexp(1.0, -static_cast<int>(2 + rng() % 4));
+      const double s0 = u(rng) * (1 - size), t0 = u(rng) * (1 - size);
+      const RationalBezierPatch node = nurbs::subpatch(patch, s0, s0 + size, t0, t0 + size);
+      const SurfaceDerivatives d = node.derivatives(0.2 + 0.6 * u(rng), 0.2 + 0.6 * u(rng));
+      Vec normal = d.du.cross(d.dv).normalized();
+      // The normal turned to the convex side (the surface curves away from it), where there is one.
+      const double uu = normal.dot(d.duu), vv = normal.dot(d.dvv), uv = normal.dot(d.duv);
+      const bool convex = uu * vv > uv * uv;
+      if (convex && uu > 0) normal = -normal;
+      const bool farthest = k % 2 == 0;
+      Vec c = 2 * Vec(v(rng), v(rng), v(rng));
+      const bool touches = convex && k % 4 < 2;
+      // Farthest: 3 behind the surface (past its centres of curvature: radii <= 1.25 on the torus and sphere);
+      // nearest: 0.5 in front of it.
+      if (touches) c = farthest ? Vec(d.point - 3 * normal) : Vec(d.point + 0.5 * normal);
+      const nurbs::DistanceExtreme e = nurbs::certifyDistanceExtreme(node, c, farthest);
+      ASSERT_TRUE(e.proved);
+      const double sampled = farthest ? sampledMax(node, [&](const Vec& x) { return (x - c).norm(); })
+                                      : -sampledMax(node, [&](const Vec& x) { return -(x - c).norm(); });
+      if (farthest) {
+        EXPECT_GE(e.value, sampled) << "k " << k;
+      } else {
+        EXPECT_LE(e.value, sampled) << "k " << k;
+      }
+      if (!touches || wavy) continue;  // the wavy patch's curvature varies too much for fixed distances
+      ++touching;
+      if (std::abs(e.value - sampled) <= 1e-12) ++exact;
+    }
+    if (!wavy) {
+      EXPECT_GE(exact, touching * 3 / 4) << touching;
+    }
+  }
+}
+
+TEST(DistanceExtreme, BrokenNetsAreRefusedWithoutACrash) {
+  const NurbsModel sphere({sphereSurface(1)}, true);
+  RationalBezierPatch p = sphere.patches().front();
+  RationalBezierPatch nan = p;
+  nan.at(1, 1)[0] = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_FALSE(nurbs::certifyDistanceExtreme(nan, Vec::Zero(), true).proved);
+  RationalBezierPatch zeroWeight = p;
+  zeroWeight.at(0, 1) = Eigen::Vector4d::Zero();
+  EXPECT_FALSE(nurbs::certifyDistanceExtreme(zeroWeight, Vec::Zero(), false).proved);
+  EXPECT_FALSE(nurbs::certifyDistanceExtreme(p, Vec(std::nan(""), 0, 0), true).proved);
 }
 
 TEST(SupportBound, BrokenNetsAreRefusedWithoutACrash) {

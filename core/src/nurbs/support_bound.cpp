@@ -14,23 +14,23 @@ namespace {
 constexpr double kEps = std::numeric_limits<double>::epsilon();
 constexpr int kNewtonSteps = 12;
 
-/// n·X (a) and W (w) of the patch: the Bernstein coefficients of h_c = a − c·w.
+/// The Bernstein coefficients (degrees p, q) of a numerator a and a positive denominator w whose ratio g = a / w
+/// is maximised: h_c = a − c·w <= 0 wherever g <= c. `error`: how far each a − c·w coefficient may be off,
+/// per unit of (|a| + |c|·w) (rounding of their computation).
 struct Heights {
-  int p, q;
+  int p = 0, q = 0;
   std::vector<double> a, w;
+  double error = 2 * kEps;
 
-  Heights(const RationalBezierPatch& patch, const Eigen::Vector3d& n) : p(patch.degreeU), q(patch.degreeV) {
-    a.reserve(patch.net.size());
-    w.reserve(patch.net.size());
-    for (const Eigen::Vector4d& h : patch.net) {
-      a.push_back(n.dot(h.head<3>()));
-      w.push_back(h[3]);
-    }
-  }
   double coefficient(const std::vector<double>& c, int i, int j) const { return c[static_cast<std::size_t>(i * (q + 1) + j)]; }
-
-  /// W at (s, t).
-  double weight(double s, double t) const {
+  /// max |a| + |c|·w over the coefficients: the magnitude rounding is measured against.
+  double scale(double c) const {
+    double s = 0;
+    for (std::size_t k = 0; k < a.size(); ++k) s = std::max(s, std::abs(a[k]) + std::abs(c) * w[k]);
+    return s;
+  }
+  /// w at (s, t).
+  double denominator(double s, double t) const {
     std::array<std::array<double, kMaxNurbsDegree + 1>, 3> bs, bt;
     bernstein(p, s, bs);
     bernstein(q, t, bt);
@@ -42,43 +42,21 @@ struct Heights {
   }
 };
 
-/// g = n·S, its gradient and Hessian at (s, t), from the patch's exact derivatives.
+/// The maximised g at (s, t) with its gradient and Hessian.
 struct Height {
   double g;
   Eigen::Vector2d grad;
   Eigen::Matrix2d hess;
 };
-Height heightAt(const RationalBezierPatch& patch, const Eigen::Vector3d& n, const Eigen::Vector2d& x) {
-  const SurfaceDerivatives d = patch.derivatives(x[0], x[1]);
-  Height r;
-  r.g = n.dot(d.point);
-  r.grad = {n.dot(d.du), n.dot(d.dv)};
-  r.hess << n.dot(d.duu), n.dot(d.duv), n.dot(d.duv), n.dot(d.dvv);
-  return r;
-}
-
-/// The larger degree.
-int largerDegree(const Heights& h) { return std::max(h.p, h.q); }
-
-/// The Greville point of the highest control point: where the maximiser search starts.
-Eigen::Vector2d highestGreville(const Heights& h) {
-  std::size_t best = 0;
-  for (std::size_t k = 1; k < h.a.size(); ++k)
-    if (h.a[k] / h.w[k] > h.a[best] / h.w[best]) best = k;
-  const int i = static_cast<int>(best) / (h.q + 1), j = static_cast<int>(best) % (h.q + 1);
-  return {double(i) / h.p, double(j) / h.q};
-}
 
 /// Is h_c = a − c·w concave over the unit square, but for δ (returned) of rounding? From the Bernstein
 /// coefficients of its second derivatives, which bound them over the square.
 bool concave(const Heights& h, double c, double& delta) {
   const int p = h.p, q = h.q;
-  double scale = 0;
-  for (std::size_t k = 0; k < h.a.size(); ++k) scale = std::max(scale, std::abs(h.a[k]) + std::abs(c) * h.w[k]);
   const auto hc = [&](int i, int j) { return h.coefficient(h.a, i, j) - c * h.coefficient(h.w, i, j); };
-  // Each h_c coefficient is off by at most 2ε·scale, so a second-derivative coefficient (weights 1, −2, 1 or
+  // Each h_c coefficient is off by at most error·scale, so a second-derivative coefficient (weights 1, −2, 1 or
   // ±1 four times, times the degree factor) by at most `err`.
-  const double err = 8 * kEps * scale * std::max({p * (p - 1), q * (q - 1), p * q});
+  const double err = 4 * h.error * h.scale(c) * std::max({p * (p - 1), q * (q - 1), p * q});
   double ss = p >= 2 ? -std::numeric_limits<double>::infinity() : 0, tt = q >= 2 ? ss : 0, st = 0;
   for (int i = 0; i + 2 <= p; ++i)
     for (int j = 0; j <= q; ++j) ss = std::max(ss, p * (p - 1) * (hc(i + 2, j) - 2 * hc(i + 1, j) + hc(i, j)));
@@ -87,16 +65,20 @@ bool concave(const Heights& h, double c, double& delta) {
   for (int i = 0; i < p; ++i)
     for (int j = 0; j < q; ++j)
       st = std::max(st, std::abs(p * q * (hc(i + 1, j + 1) - hc(i + 1, j) - hc(i, j + 1) + hc(i, j))));
-  // The Hessian is allowed δ = 2·err above negative semidefinite (rounding cannot tell a flat direction from a
-  // slightly convex one); that adds at most ½δ|y − x0|² <= δ on the unit square.
-  delta = 2 * err;
   ss += err, tt += err, st += err;
+  // Proved negative semidefinite with the rounding counted against it: no allowance. Otherwise the Hessian is
+  // allowed δ = 2·err above it (rounding cannot tell a flat direction from a slightly convex one); that adds at
+  // most ½δ|y − x0|² <= δ on the unit square.
+  delta = 0;
+  if (ss <= 0 && tt <= 0 && ss * tt >= st * st) return true;
+  delta = 2 * err;
   return ss <= delta && tt <= delta && (delta - ss) * (delta - tt) >= st * st;
 }
 
-/// The maximiser of n·S over [0,1]², by projected Newton from x (where n·S has its value and derivatives `at`):
+/// The maximiser of g over [0,1]², by projected Newton from x (where g has its value and derivatives `at`):
 /// a local maximiser, the global one where h_c is concave.
-Eigen::Vector2d maximiser(const RationalBezierPatch& patch, const Eigen::Vector3d& n, Eigen::Vector2d x, Height at) {
+template <class HeightAt>
+Eigen::Vector2d maximiser(const HeightAt& heightAt, Eigen::Vector2d x, Height at) {
   for (int step = 0; step < kNewtonSteps; ++step) {
     // Coordinates held at a bound the gradient pushes against stay there.
     Eigen::Vector2d d = Eigen::Vector2d::Zero();
@@ -116,14 +98,14 @@ Eigen::Vector2d maximiser(const RationalBezierPatch& patch, const Eigen::Vector3
       if (norm == 0) break;
       d *= 0.25 / norm;
     }
-    // Halve the step until n·S does not decrease, but for rounding: near the maximum n·S is flat to rounding
+    // Halve the step until g does not decrease, but for rounding: near the maximum g is flat to rounding
     // while the gradient, which the bound uses, still shrinks with every Newton step.
     const double noise = 8 * kEps * std::abs(at.g);
     bool accepted = false;
     double moved = 0;
     for (int halving = 0; halving < 8 && !accepted; ++halving, d *= 0.5) {
       const Eigen::Vector2d y = (x + d).cwiseMax(0.0).cwiseMin(1.0);
-      const Height next = heightAt(patch, n, y);
+      const Height next = heightAt(y);
       if (next.g >= at.g - noise) {
         accepted = true;
         moved = (y - x).cwiseAbs().maxCoeff();
@@ -137,38 +119,141 @@ Eigen::Vector2d maximiser(const RationalBezierPatch& patch, const Eigen::Vector3
   return x;
 }
 
-}  // namespace
-
-SupportBound certifySupport(const RationalBezierPatch& patch, const Eigen::Vector3d& n) {
-  const Heights h(patch, n);
+/// max over the square of g = a / w, proved (or not proved) by concavity of h_c at the maximiser; heightAt(x)
+/// evaluates g exactly (from the patch, not from a and w).
+template <class HeightAt>
+SupportBound certifyMaximum(const Heights& h, const HeightAt& heightAt) {
   double wLow = std::numeric_limits<double>::infinity();
+  std::size_t highest = 0;
   for (std::size_t k = 0; k < h.w.size(); ++k) {
     if (!std::isfinite(h.a[k]) || !std::isfinite(h.w[k])) return {};
     wLow = std::min(wLow, h.w[k]);
+    if (h.a[k] * h.w[highest] > h.a[highest] * h.w[k]) highest = k;
   }
   if (!(wLow > 0)) return {};
-  // Concavity for the value at the start first: where it fails (a saddle, a node curving toward the plane)
-  // the maximiser is not worth searching for.
-  const Eigen::Vector2d start = highestGreville(h);
-  const Height atStart = heightAt(patch, n, start);
+  // Concavity for the value at the start (the Greville point of the highest coefficient) first: where it fails
+  // (a saddle, a node curving toward the level set) the maximiser is not worth searching for.
+  const int i = static_cast<int>(highest) / (h.q + 1), j = static_cast<int>(highest) % (h.q + 1);
+  const Eigen::Vector2d start(double(i) / h.p, double(j) / h.q);
+  const Height atStart = heightAt(start);
   double delta = 0;
   if (!concave(h, atStart.g, delta)) return {};
-  const Eigen::Vector2d x0 = maximiser(patch, n, start, atStart);
-  const Height at = heightAt(patch, n, x0);
+  const Eigen::Vector2d x0 = maximiser(heightAt, start, atStart);
+  const Height at = heightAt(x0);
   const double c = at.g;
   if (!std::isfinite(c) || !concave(h, c, delta)) return {};
-  // The tangent plane of h_c = W·(n·S − c) at x0, where n·S = c: its gradient is W(x0)·∇(n·S). Largest at a
-  // corner of the unit square.
-  const Eigen::Vector2d grad = h.weight(x0[0], x0[1]) * at.grad;
+  // The tangent plane of h_c = w·(g − c) at x0, where g = c: its gradient is w(x0)·∇g. Largest at a corner of
+  // the unit square.
+  const Eigen::Vector2d grad = h.denominator(x0[0], x0[1]) * at.grad;
   double linear = 0;
   for (double s : {0.0, 1.0})
     for (double t : {0.0, 1.0}) linear = std::max(linear, grad.dot(Eigen::Vector2d(s, t) - x0));
-  double scale = 0;
-  for (std::size_t k = 0; k < h.a.size(); ++k) scale = std::max(scale, std::abs(h.a[k]) + std::abs(c) * h.w[k]);
   // h_c(x0) is zero but for rounding, and the tangent plane's gradient is rounded too: a Bernstein sum of
-  // (p + 1)(q + 1) terms is off by ~(p + q + 2)·ε·scale, its derivatives by the degree times that.
-  const double roundingOfH = 4 * (largerDegree(h) + 1) * (h.p + h.q + 2) * kEps * scale;
+  // (p + 1)(q + 1) terms is off by ~(p + q + 2)·ε·scale, its derivatives by the degree times that; coefficients
+  // computed as products (the distance's) add their error beyond the 2ε of a plain one.
+  const double scale = h.scale(c);
+  const double roundingOfH = (4 * (std::max(h.p, h.q) + 1) * (h.p + h.q + 2) * kEps + (h.error - 2 * kEps)) * scale;
   return {true, c + (linear + delta + roundingOfH) / wLow};
+}
+
+}  // namespace
+
+SupportBound certifySupport(const RationalBezierPatch& patch, const Eigen::Vector3d& n) {
+  Heights h;
+  h.p = patch.degreeU;
+  h.q = patch.degreeV;
+  h.a.reserve(patch.net.size());
+  h.w.reserve(patch.net.size());
+  for (const Eigen::Vector4d& x : patch.net) {
+    h.a.push_back(n.dot(x.head<3>()));
+    h.w.push_back(x[3]);
+  }
+  return certifyMaximum(h, [&](const Eigen::Vector2d& x) {
+    const SurfaceDerivatives d = patch.derivatives(x[0], x[1]);
+    Height r;
+    r.g = n.dot(d.point);
+    r.grad = {n.dot(d.du), n.dot(d.dv)};
+    r.hess << n.dot(d.duu), n.dot(d.duv), n.dot(d.duv), n.dot(d.dvv);
+    return r;
+  });
+}
+
+DistanceExtreme certifyDistanceExtreme(const RationalBezierPatch& patch, const Eigen::Vector3d& c, bool farthest,
+                                       bool exact) {
+  const int n = patch.degreeU, m = patch.degreeV;
+  if (2 * std::max(n, m) > kMaxNurbsDegree) return {};  // beyond the Bernstein evaluation's fixed rows
+  // ±|X − c·W|² and W² in Bernstein form of degree (2n, 2m): products of the degree-(n, m) forms, each
+  // coefficient a weighted mean of the products (Vandermonde: the weights C(n,i)C(n,k−i)/C(2n,k) sum to one).
+  const double sign = farthest ? 1.0 : -1.0;
+  Heights h;
+  h.p = 2 * n;
+  h.q = 2 * m;
+  const std::size_t cols = static_cast<std::size_t>(h.q + 1);
+  h.a.assign(static_cast<std::size_t>(h.p + 1) * cols, 0.0);
+  h.w.assign(h.a.size(), 0.0);
+  std::vector<Eigen::Vector3d> y(patch.net.size());
+  double magnitude = 0, weight = 0, reach = 0;
+  for (std::size_t k = 0; k < patch.net.size(); ++k) {
+    y[k] = patch.net[k].head<3>() - c * patch.net[k][3];
+    magnitude = std::max(magnitude, y[k].norm());
+    weight = std::max(weight, patch.net[k][3]);
+    reach = std::max(reach, patch.net[k].head<3>().norm());
+  }
+  // The product's weights C(d,i)·C(d,i2) / C(2d,i+i2) per direction, tabulated once (d <= kMaxNurbsDegree / 2).
+  constexpr int kRow = kMaxNurbsDegree / 2 + 1;
+  std::array<double, kRow * kRow> fu{}, fv{};
+  const auto weights = [](int deg, std::array<double, kRow * kRow>& out) {
+    for (int i = 0; i <= deg; ++i)
+      for (int i2 = 0; i2 <= deg; ++i2)
+        out[static_cast<std::size_t>(i * kRow + i2)] = binomial(deg, i) * binomial(deg, i2) / binomial(2 * deg, i + i2);
+  };
+  weights(n, fu);
+  weights(m, fv);
+  // Each unordered pair of control points once (the weights are symmetric), twice over when they differ.
+  const int count = (n + 1) * (m + 1);
+  for (int k1 = 0; k1 < count; ++k1) {
+    const int i = k1 / (m + 1), j = k1 % (m + 1);
+    const Eigen::Vector3d& y1 = y[static_cast<std::size_t>(k1)];
+    const double w1 = patch.net[static_cast<std::size_t>(k1)][3];
+    for (int k2 = k1; k2 < count; ++k2) {
+      const int i2 = k2 / (m + 1), j2 = k2 % (m + 1);
+      const double f = (k2 == k1 ? 1.0 : 2.0) * fu[static_cast<std::size_t>(i * kRow + i2)] *
+                       fv[static_cast<std::size_t>(j * kRow + j2)];
+      const std::size_t kl = static_cast<std::size_t>(i + i2) * cols + static_cast<std::size_t>(j + j2);
+      h.a[kl] += sign * f * y1.dot(y[static_cast<std::size_t>(k2)]);
+      h.w[kl] += f * w1 * patch.net[static_cast<std::size_t>(k2)][3];
+    }
+  }
+  // Each coefficient is a mean of at most (n + 1)(m + 1) products y·y' (|y| <= magnitude) with rounded weights:
+  // off by ((n + 1)(m + 1) + 8)·ε·magnitude²; and y = X − c·W itself is off by ε·(|X| + |c|·W), which moves a
+  // product by 2·magnitude times that. Counted per unit of max |a|, which scale(γ) is at least.
+  const double absolute =
+      kEps * (((n + 1) * (m + 1) + 8) * magnitude * magnitude + 4 * magnitude * (reach + c.norm() * weight));
+  h.error = std::max(2 * kEps, absolute / std::max(std::numeric_limits<double>::min(), h.scale(0)));
+  // Without concavity the coefficients still bound the ratio: max of ±|S − c|² <= max of the coefficient ratios
+  // (second order in the patch size, valid for any patch).
+  double ratio = -std::numeric_limits<double>::infinity();
+  for (std::size_t k = 0; k < h.a.size(); ++k) {
+    if (!(h.w[k] > 0) || !std::isfinite(h.a[k])) return {};
+    ratio = std::max(ratio, h.a[k] / h.w[k]);
+  }
+  ratio += 2 * h.error * h.scale(0) / *std::min_element(h.w.begin(), h.w.end());
+  if (!exact) return {true, std::sqrt(std::max(0.0, farthest ? ratio : -ratio))};
+  SupportBound b = certifyMaximum(h, [&](const Eigen::Vector2d& x) {
+    const SurfaceDerivatives d = patch.derivatives(x[0], x[1]);
+    const Eigen::Vector3d r = d.point - c;
+    Height out;
+    out.g = sign * r.squaredNorm();
+    out.grad = 2 * sign * Eigen::Vector2d(r.dot(d.du), r.dot(d.dv));
+    const double uv = d.du.dot(d.dv) + r.dot(d.duv);
+    out.hess << d.du.squaredNorm() + r.dot(d.duu), uv, uv, d.dv.squaredNorm() + r.dot(d.dvv);
+    out.hess *= 2 * sign;
+    return out;
+  });
+  const double upper = b.proved ? std::min(b.upper, ratio) : ratio;
+  // max of ±|S − c|²: the farthest distance is √upper; the nearest is √(−upper) (or 0 when the bound crosses 0).
+  if (farthest) return {true, std::sqrt(std::max(0.0, upper))};
+  return {true, std::sqrt(std::max(0.0, -upper))};
 }
 
 }  // namespace unidist::nurbs

@@ -6,12 +6,14 @@
 #include "nurbs/pair_convexity.h"
 #include "nurbs/pair_newton.h"
 #include "nurbs/patch_tree.h"
+#include "nurbs/support_ball.h"
 #include "nurbs/support_bound.h"
 #include "unidist/nurbs.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <queue>
 #include <vector>
 
@@ -260,9 +262,26 @@ class PairSearch {
 
   /// margin: the rounding allowance of visit().
   bool settledByPlane(const Node& na, const Node& nb, double margin) {
-    if (!plane_.convexContact) return false;
+    if (!plane_.convexContact) return settledByBall(na, nb, margin);
     const double lower = planeGap(na, nb) - margin;
     if (lower < best_.value - 0.5 * tolerance_) return false;
+    lowerOfPruned_ = std::min(lowerOfPruned_, lower);
+    return true;
+  }
+
+  /// Where the plane cannot be used (a saddle or a concave side at the best pair), a ball curved between the two
+  /// surfaces (support_ball.h), fitted when the best pair changes.
+  bool settledByBall(const Node& na, const Node& nb, double margin) {
+    if (ballForBest_ != best_.value) {
+      ballForBest_ = best_.value;
+      ball_ = nurbs::SupportBall::fit(a_.patches()[static_cast<std::size_t>(best_.patchA)], best_.x.head<2>(),
+                                      b_.patches()[static_cast<std::size_t>(best_.patchB)], best_.x.tail<2>(), X_AB_,
+                                      best_.pA, best_.pB);
+    }
+    if (!ball_) return false;
+    const double needed = best_.value - 0.5 * tolerance_;
+    const double lower = ball_->gap(na, nb, needed + margin) - margin;
+    if (lower < needed) return false;
     lowerOfPruned_ = std::min(lowerOfPruned_, lower);
     return true;
   }
@@ -457,6 +476,8 @@ class PairSearch {
   std::vector<NewtonEnd> ends_;
   std::vector<ConvexRegion> regions_;
   SupportPlane plane_;
+  double ballForBest_ = std::numeric_limits<double>::quiet_NaN();
+  std::optional<nurbs::SupportBall> ball_;
   std::vector<std::unique_ptr<Node>> arena_;
   std::priority_queue<OpenPair, std::vector<OpenPair>, std::greater<OpenPair>> open_;
 };

@@ -1,0 +1,134 @@
+#include "nurbs/support_ball.h"
+
+#include "nurbs/support_bound.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace unidist::nurbs {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kExactReach = 2;  // a node within this many of its radii of the touching point is certified exactly
+constexpr double kMinMargin = 0.002;  // of the inner surface's curvature: a ball fitting by less is not used
+
+/// The least normal curvature of the patch at x, curving away from the direction `toward` (positive: the
+/// surface bends away from a point on that side), or NaN where the first fundamental form is singular.
+double leastCurvatureAway(const RationalBezierPatch& patch, const Eigen::Vector2d& x, const Eigen::Vector3d& toward) {
+  const SurfaceDerivatives d = patch.derivatives(x[0], x[1]);
+  Eigen::Matrix2d G, H;
+  G << d.du.squaredNorm(), d.du.dot(d.dv), d.du.dot(d.dv), d.dv.squaredNorm();
+  H << -toward.dot(d.duu), -toward.dot(d.duv), -toward.dot(d.duv), -toward.dot(d.dvv);
+  const Eigen::LLT<Eigen::Matrix2d> llt(G);
+  if (llt.info() != Eigen::Success || !(G.determinant() > 1e-20 * G.squaredNorm())) return std::nan("");
+  const Eigen::Matrix2d L = llt.matrixL();
+  const Eigen::Matrix2d Li = L.inverse();
+  const Eigen::Matrix2d M = Li * H * Li.transpose();  // the shape operator in an orthonormal tangent frame
+  const double mean = 0.5 * (M(0, 0) + M(1, 1));
+  const double half = std::hypot(0.5 * (M(0, 0) - M(1, 1)), 0.5 * (M(0, 1) + M(1, 0)));
+  return mean - half;
+}
+
+/// ρ with the two margins equal: the inner surface's least curvature kInner above 1/ρ by as much as the outer's
+/// kOuter is above −1/(ρ + d). The first margin grows with ρ, the second shrinks.
+double balancedRadius(double kInner, double kOuter, double d) {
+  double lo = 1 / kInner, hi = kOuter < 0 ? -1 / kOuter - d : 1e6 * lo;
+  for (int k = 0; k < 60; ++k) {
+    const double rho = std::sqrt(lo * hi);
+    if (kInner - 1 / rho < kOuter + 1 / (rho + d)) {
+      lo = rho;
+    } else {
+      hi = rho;
+    }
+  }
+  return std::sqrt(lo * hi);
+}
+
+double farthestControlPoint(const PatchNode& n, const Eigen::Vector3d& c) {
+  double far = 0;
+  for (const Eigen::Vector3d& p : n.points) far = std::max(far, (p - c).squaredNorm());
+  return std::sqrt(far);
+}
+
+}  // namespace
+
+std::optional<SupportBall> SupportBall::fit(const RationalBezierPatch& patchA, const Eigen::Vector2d& xA,
+                                            const RationalBezierPatch& patchB, const Eigen::Vector2d& xB,
+                                            const Eigen::Isometry3d& X_AB, const Eigen::Vector3d& pA,
+                                            const Eigen::Vector3d& pB) {
+  const Eigen::Vector3d gap = pB - pA;
+  const double d = gap.norm();
+  if (!(d > 0)) return std::nullopt;
+  const Eigen::Vector3d n = gap / d;
+  const double kA = leastCurvatureAway(patchA, xA, n);
+  const double kB = leastCurvatureAway(patchB, xB, -(X_AB.linear().transpose() * n));
+  if (!std::isfinite(kA) || !std::isfinite(kB)) return std::nullopt;
+  // The inner side needs a strictly convex contact; the outer side may curve toward it by less than the larger
+  // ball. (Both convex is the support plane's case.)
+  // A ball that barely fits (a circle of minima: the outer surface curves toward the inner as much as it can)
+  // leaves no margin for the certificates to settle anything and costs them at every pair.
+  const auto fits = [d](double kInner, double kOuter) {
+    if (!(kInner > 0)) return false;
+    if (kOuter >= 0) return true;
+    const double rho = balancedRadius(kInner, kOuter, d);
+    return kInner - 1 / rho > kMinMargin * kInner;
+  };
+  SupportBall ball;
+  if (fits(kB, kA) && (kB >= kA || !fits(kA, kB))) {
+    ball.innerIsB_ = true;
+    ball.radius_ = balancedRadius(kB, kA, d);
+    ball.centreA_ = pB + ball.radius_ * n;
+  } else if (fits(kA, kB)) {
+    ball.innerIsB_ = false;
+    ball.radius_ = balancedRadius(kA, kB, d);
+    ball.centreA_ = pA - ball.radius_ * n;
+  } else {
+    return std::nullopt;
+  }
+  ball.centreB_ = X_AB.inverse() * ball.centreA_;
+  ball.contactA_ = pA;
+  ball.contactB_ = X_AB.inverse() * pB;
+  return ball;
+}
+
+double SupportBall::certified(Cache& cache, const PatchNode& node, const Eigen::Vector3d& centre,
+                              const Eigen::Vector3d& contact, bool farthest) {
+  for (const auto& [key, value] : cache)
+    if (key == &node) return value;
+  const bool exact = (node.ball.center - contact).norm() <= kExactReach * node.ball.radius;
+  const DistanceExtreme e = certifyDistanceExtreme(node.net, centre, farthest, exact);
+  const double value = e.proved ? e.value : (farthest ? kInf : 0.0);
+  cache.emplace_back(&node, value);
+  return value;
+}
+
+double SupportBall::gap(const PatchNode& na, const PatchNode& nb, double needed) {
+  const PatchNode& inner = innerIsB_ ? nb : na;
+  const PatchNode& outer = innerIsB_ ? na : nb;
+  const Eigen::Vector3d& cInner = innerIsB_ ? centreB_ : centreA_;
+  const Eigen::Vector3d& cOuter = innerIsB_ ? centreA_ : centreB_;
+  // Cheap bounds first: the farthest control point (|x − c| is convex, so its maximum over the hull is at one),
+  // and the nearest the outer node's ball and frame box allow.
+  double far = farthestControlPoint(inner, cInner);
+  double near = std::max((outer.ball.center - cOuter).norm() - outer.ball.radius, boxDistance(outer, cOuter));
+  if (near - far >= needed) return near - far;
+  // A certified extreme is no better than the surface's own corners: certify only when they leave room.
+  double cornerFar = 0, cornerNear = kInf;
+  for (int k = 0; k < 4; ++k) {
+    cornerFar = std::max(cornerFar, (inner.corners[static_cast<std::size_t>(k)] - cInner).norm());
+    cornerNear = std::min(cornerNear, (outer.corners[static_cast<std::size_t>(k)] - cOuter).norm());
+  }
+  if (cornerNear - cornerFar < needed) return near - far;
+  // The side that limits first: no near bound can settle the pair while the far one leaves no room.
+  const Eigen::Vector3d& pInner = innerIsB_ ? contactB_ : contactA_;
+  const Eigen::Vector3d& pOuter = innerIsB_ ? contactA_ : contactB_;
+  if (cornerNear - far < needed)
+    far = std::min(far, certified(innerIsB_ ? farB_ : farA_, inner, cInner, pInner, true));
+  if (cornerNear - far < needed) return near - far;
+  if (near - far < needed)
+    near = std::max(near, certified(innerIsB_ ? nearA_ : nearB_, outer, cOuter, pOuter, false));
+  return near - far;
+}
+
+}  // namespace unidist::nurbs

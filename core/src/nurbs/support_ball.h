@@ -1,0 +1,51 @@
+// A ball separating two surfaces near their closest pair where a plane cannot: one surface (the inner one)
+// curves away from the other more than a sphere of radius ρ does, and the other stays outside the concentric
+// sphere of radius ρ + d. With c the centre, |a − b| >= |a − c| − |b − c| for any points, so every pair of
+// nodes is at least (least distance from c over the outer node) − (greatest over the inner node) apart. Both
+// extremes are certified exactly where the node holds the touching point (support_bound.h), so the nodes at the
+// closest pair are settled at any size, as the support plane settles them at a convex contact. It needs the
+// inner surface strictly convex there and the outer one curving toward it less than 1 / (ρ + d): a saddle or
+// a concave side against a convex one. Internal.
+#pragma once
+
+#include "nurbs/patch_tree.h"
+
+#include <optional>
+#include <utility>
+#include <vector>
+
+namespace unidist::nurbs {
+
+class SupportBall {
+ public:
+  /// The ball for the closest pair pA (patch A at parameters xA), pB (patch B at xB), A's frame (B's points map
+  /// by X_AB); none when neither side is curved enough to fit one.
+  static std::optional<SupportBall> fit(const RationalBezierPatch& patchA, const Eigen::Vector2d& xA,
+                                        const RationalBezierPatch& patchB, const Eigen::Vector2d& xB,
+                                        const Eigen::Isometry3d& X_AB, const Eigen::Vector3d& pA,
+                                        const Eigen::Vector3d& pB);
+
+  /// A proved lower bound of the distance between the two nodes (rounding of the nets aside, as for the other
+  /// bounds); certificates are made (and kept per node) only while the bound falls short of `needed`.
+  double gap(const PatchNode& na, const PatchNode& nb, double needed);
+
+  double radius() const { return radius_; }
+  bool innerIsB() const { return innerIsB_; }
+
+ private:
+  using Cache = std::vector<std::pair<const PatchNode*, double>>;
+  /// The least (near) or greatest distance from the centre over the node, certified (near: 0 and far: +inf
+  /// when not proved).
+  /// Exact (by concavity) only for a node at the touching point `contact`; elsewhere the surface is clear of the
+  /// sphere by a margin and the coefficient bound, second order in the node size, is what is worth its cost.
+  double certified(Cache& cache, const PatchNode& node, const Eigen::Vector3d& centre, const Eigen::Vector3d& contact,
+                   bool farthest);
+
+  bool innerIsB_ = true;
+  double radius_ = 0;
+  Eigen::Vector3d centreA_ = Eigen::Vector3d::Zero(), centreB_ = Eigen::Vector3d::Zero();
+  Eigen::Vector3d contactA_ = Eigen::Vector3d::Zero(), contactB_ = Eigen::Vector3d::Zero();  // pA, pB, own frames
+  Cache nearA_, farA_, nearB_, farB_;
+};
+
+}  // namespace unidist::nurbs
