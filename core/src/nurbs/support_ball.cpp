@@ -97,7 +97,9 @@ double SupportBall::certified(Cache& cache, const PatchNode& node, const Eigen::
   for (const auto& [key, value] : cache)
     if (key == &node) return value;
   const bool exact = (node.ball.center - contact).norm() <= kExactReach * node.ball.radius;
-  const DistanceExtreme e = certifyDistanceExtreme(node.net, centre, farthest, exact);
+  ExtremeRequest request;
+  request.exact = exact;
+  const DistanceExtreme e = certifyDistanceExtreme(node.net, centre, farthest, request);
   const double value = e.proved ? e.value : (farthest ? kInf : 0.0);
   cache.emplace_back(&node, value);
   return value;

@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <utility>
 #include <vector>
 
 namespace unidist::nurbs {
@@ -17,12 +18,42 @@ constexpr int kNewtonSteps = 12;
 /// The Bernstein coefficients (degrees p, q) of a numerator a and a positive denominator w whose ratio g = a / w
 /// is maximised: h_c = a − c·w <= 0 wherever g <= c. `error`: how far each a − c·w coefficient may be off,
 /// per unit of (|a| + |c|·w) (rounding of their computation).
+/// Coefficients on the stack for the common degrees (up to a bicubic patch's squared distance, 7 × 7), on the
+/// heap beyond: a certificate is asked of many nodes per query.
+class Coefficients {
+ public:
+  Coefficients() = default;
+  Coefficients(const Coefficients&) = delete;
+  Coefficients& operator=(const Coefficients&) = delete;
+  void assign(std::size_t n, double value) {
+    size_ = n;
+    if (n > local_.size()) {
+      heap_.assign(n, value);
+      data_ = heap_.data();
+    } else {
+      std::fill_n(local_.begin(), n, value);
+      data_ = local_.data();
+    }
+  }
+  std::size_t size() const { return size_; }
+  double& operator[](std::size_t k) { return data_[k]; }
+  double operator[](std::size_t k) const { return data_[k]; }
+  const double* begin() const { return data_; }
+  const double* end() const { return data_ + size_; }
+
+ private:
+  std::array<double, 49> local_;
+  std::vector<double> heap_;
+  double* data_ = local_.data();
+  std::size_t size_ = 0;
+};
+
 struct Heights {
   int p = 0, q = 0;
-  std::vector<double> a, w;
+  Coefficients a, w;
   double error = 2 * kEps;
 
-  double coefficient(const std::vector<double>& c, int i, int j) const { return c[static_cast<std::size_t>(i * (q + 1) + j)]; }
+  double coefficient(const Coefficients& c, int i, int j) const { return c[static_cast<std::size_t>(i * (q + 1) + j)]; }
   /// max |a| + |c|·w over the coefficients: the magnitude rounding is measured against.
   double scale(double c) const {
     double s = 0;
@@ -78,7 +109,7 @@ bool concave(const Heights& h, double c, double& delta) {
 /// The maximiser of g over [0,1]², by projected Newton from x (where g has its value and derivatives `at`):
 /// a local maximiser, the global one where h_c is concave.
 template <class HeightAt>
-Eigen::Vector2d maximiser(const HeightAt& heightAt, Eigen::Vector2d x, Height at) {
+std::pair<Eigen::Vector2d, Height> maximiser(const HeightAt& heightAt, Eigen::Vector2d x, Height at) {
   for (int step = 0; step < kNewtonSteps; ++step) {
     // Coordinates held at a bound the gradient pushes against stay there.
     Eigen::Vector2d d = Eigen::Vector2d::Zero();
@@ -116,13 +147,13 @@ Eigen::Vector2d maximiser(const HeightAt& heightAt, Eigen::Vector2d x, Height at
     // Newton converges quadratically: after a step this short the next would move x by ~its square.
     if (!accepted || moved <= 1e-9) break;
   }
-  return x;
+  return {x, at};
 }
 
 /// max over the square of g = a / w, proved (or not proved) by concavity of h_c at the maximiser; heightAt(x)
 /// evaluates g exactly (from the patch, not from a and w).
 template <class HeightAt>
-SupportBound certifyMaximum(const Heights& h, const HeightAt& heightAt) {
+SupportBound certifyMaximum(const Heights& h, const HeightAt& heightAt, const Eigen::Vector2d* given = nullptr) {
   double wLow = std::numeric_limits<double>::infinity();
   std::size_t highest = 0;
   for (std::size_t k = 0; k < h.w.size(); ++k) {
@@ -131,15 +162,17 @@ SupportBound certifyMaximum(const Heights& h, const HeightAt& heightAt) {
     if (h.a[k] * h.w[highest] > h.a[highest] * h.w[k]) highest = k;
   }
   if (!(wLow > 0)) return {};
-  // Concavity for the value at the start (the Greville point of the highest coefficient) first: where it fails
-  // (a saddle, a node curving toward the level set) the maximiser is not worth searching for.
+  // Concavity for the value at the start (the caller's estimate of the maximiser, else the Greville point of
+  // the highest coefficient) first: where it fails (a saddle, a node curving toward the level set) the
+  // maximiser is not worth searching for. From the caller's estimate Newton still runs: the tangent plane's
+  // gradient, which the bound pays for, shrinks with each step after the value stopped changing.
   const int i = static_cast<int>(highest) / (h.q + 1), j = static_cast<int>(highest) % (h.q + 1);
-  const Eigen::Vector2d start(double(i) / h.p, double(j) / h.q);
+  const Eigen::Vector2d start = given ? Eigen::Vector2d(given->cwiseMax(0.0).cwiseMin(1.0))
+                                      : Eigen::Vector2d(double(i) / h.p, double(j) / h.q);
   const Height atStart = heightAt(start);
   double delta = 0;
-  if (!concave(h, atStart.g, delta)) return {};
-  const Eigen::Vector2d x0 = maximiser(heightAt, start, atStart);
-  const Height at = heightAt(x0);
+  if (!given && !concave(h, atStart.g, delta)) return {};
+  const auto [x0, at] = maximiser(heightAt, start, atStart);
   const double c = at.g;
   if (!std::isfinite(c) || !concave(h, c, delta)) return {};
   // The tangent plane of h_c = w·(g − c) at x0, where g = c: its gradient is w(x0)·∇g. Largest at a corner of
@@ -162,11 +195,11 @@ SupportBound certifySupport(const RationalBezierPatch& patch, const Eigen::Vecto
   Heights h;
   h.p = patch.degreeU;
   h.q = patch.degreeV;
-  h.a.reserve(patch.net.size());
-  h.w.reserve(patch.net.size());
-  for (const Eigen::Vector4d& x : patch.net) {
-    h.a.push_back(n.dot(x.head<3>()));
-    h.w.push_back(x[3]);
+  h.a.assign(patch.net.size(), 0.0);
+  h.w.assign(patch.net.size(), 0.0);
+  for (std::size_t k = 0; k < patch.net.size(); ++k) {
+    h.a[k] = n.dot(patch.net[k].head<3>());
+    h.w[k] = patch.net[k][3];
   }
   return certifyMaximum(h, [&](const Eigen::Vector2d& x) {
     const SurfaceDerivatives d = patch.derivatives(x[0], x[1]);
@@ -179,7 +212,7 @@ SupportBound certifySupport(const RationalBezierPatch& patch, const Eigen::Vecto
 }
 
 DistanceExtreme certifyDistanceExtreme(const RationalBezierPatch& patch, const Eigen::Vector3d& c, bool farthest,
-                                       bool exact) {
+                                       const ExtremeRequest& request) {
   const int n = patch.degreeU, m = patch.degreeV;
   if (2 * std::max(n, m) > kMaxNurbsDegree) return {};  // beyond the Bernstein evaluation's fixed rows
   // ±|X − c·W|² and W² in Bernstein form of degree (2n, 2m): products of the degree-(n, m) forms, each
@@ -191,7 +224,9 @@ DistanceExtreme certifyDistanceExtreme(const RationalBezierPatch& patch, const E
   const std::size_t cols = static_cast<std::size_t>(h.q + 1);
   h.a.assign(static_cast<std::size_t>(h.p + 1) * cols, 0.0);
   h.w.assign(h.a.size(), 0.0);
-  std::vector<Eigen::Vector3d> y(patch.net.size());
+  std::array<Eigen::Vector3d, 16> yLocal;
+  std::vector<Eigen::Vector3d> yHeap(patch.net.size() > yLocal.size() ? patch.net.size() : 0);
+  Eigen::Vector3d* y = yHeap.empty() ? yLocal.data() : yHeap.data();
   double magnitude = 0, weight = 0, reach = 0;
   for (std::size_t k = 0; k < patch.net.size(); ++k) {
     y[k] = patch.net[k].head<3>() - c * patch.net[k][3];
@@ -238,7 +273,8 @@ DistanceExtreme certifyDistanceExtreme(const RationalBezierPatch& patch, const E
     ratio = std::max(ratio, h.a[k] / h.w[k]);
   }
   ratio += 2 * h.error * h.scale(0) / *std::min_element(h.w.begin(), h.w.end());
-  if (!exact) return {true, std::sqrt(std::max(0.0, farthest ? ratio : -ratio))};
+  const DistanceExtreme byRatio{true, std::sqrt(std::max(0.0, farthest ? ratio : -ratio))};
+  if (!request.exact || (farthest ? byRatio.value <= request.enough : byRatio.value >= request.enough)) return byRatio;
   SupportBound b = certifyMaximum(h, [&](const Eigen::Vector2d& x) {
     const SurfaceDerivatives d = patch.derivatives(x[0], x[1]);
     const Eigen::Vector3d r = d.point - c;
@@ -249,7 +285,7 @@ DistanceExtreme certifyDistanceExtreme(const RationalBezierPatch& patch, const E
     out.hess << d.du.squaredNorm() + r.dot(d.duu), uv, uv, d.dv.squaredNorm() + r.dot(d.dvv);
     out.hess *= 2 * sign;
     return out;
-  });
+  }, request.extreme);
   const double upper = b.proved ? std::min(b.upper, ratio) : ratio;
   // max of ±|S − c|²: the farthest distance is √upper; the nearest is √(−upper) (or 0 when the bound crosses 0).
   if (farthest) return {true, std::sqrt(std::max(0.0, upper))};
