@@ -175,6 +175,15 @@ class NurbsModel final : public Model {
   double enclosedVolume() const;
   std::size_t patchTreeBytes() const;  // the cached subdivision tree so far
   Eigen::Vector3d normalAt(const nurbs::PatchHit& h) const;  // the search's normal where it has one
+  // Whether q = p + away lies inside, p = h.point on a patch edge or corner: from every face meeting at p.
+  bool insideAtBoundary(const nurbs::PatchHit& h, const Eigen::Vector3d& away, Eigen::Vector3d& normalSum) const;
+  // A patch through a point of another's boundary, at its local (s, t) there.
+  struct Incident {
+    int patch;
+    double s, t;
+  };
+  std::vector<Incident> incidentsAt(int k, const Eigen::Vector3d& x) const;  // every patch but k through x
+  void findIncidents();
 
   std::vector<NurbsSurface> surfaces_;
   std::vector<RationalBezierPatch> patches_;
@@ -185,6 +194,9 @@ class NurbsModel final : public Model {
   std::unique_ptr<nurbs::PatchForest> forest_;
   std::unique_ptr<lod::StandInCache> standIns_;
   std::vector<std::array<bool, 2>> periodic_;  // per surface, u and v
+  // Solids: per patch, the other patches through its corners (s + 2t) and along its edges (4 + e: s = 0, s = 1,
+  // t = 0, t = 1; at the edge's midpoint, kept only where one patch's whole edge matches it).
+  std::vector<std::vector<Incident>> incidents_;
 };
 
 }  // namespace unidist

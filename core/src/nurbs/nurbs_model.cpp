@@ -6,24 +6,35 @@
 #include "nurbs/patch_search.h"
 #include "nurbs/patch_tree.h"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <memory_resource>
 
 namespace unidist {
 namespace {
 
 // Every distance is resolved to this fraction of the model size (the contract's default tolerance is 1e-9).
 constexpr double kRelativeTolerance = 1e-13;
-// Candidates within this fraction of the model size of the best distance are ties (their normals decide the side).
-constexpr double kRelativeTie = 1e-9;
 // A solid's surface must be closed to this fraction of the model size.
 constexpr double kRelativeClosure = 1e-9;
+// Unit normals of faces meeting at a point closer than this make no crease (a seam; a pole's nudged normals).
+constexpr double kCreaseAngle = 1e-6;
 
 std::string vec(const Eigen::Vector3d& v) {
   char buf[96];
   std::snprintf(buf, sizeof buf, "(%.9g, %.9g, %.9g)", v.x(), v.y(), v.z());
   return buf;
+}
+
+// (s, t) moved onto the patch's edges where that moves its point x by no more than `snap` (a Newton run may stop
+// a few ulps short of an edge).
+void snapToEdges(const RationalBezierPatch& P, const Eigen::Vector3d& x, double snap, double& s, double& t) {
+  const double s0 = s < 0.5 ? 0.0 : 1.0, t0 = t < 0.5 ? 0.0 : 1.0;
+  if ((P.evaluate(s0, t) - x).norm() <= snap) s = s0;
+  if ((P.evaluate(s, t0) - x).norm() <= snap) t = t0;
 }
 
 }  // namespace
@@ -46,6 +57,7 @@ NurbsModel::NurbsModel(std::vector<NurbsSurface> surfaces, bool solid) : surface
   if (solid_) {
     checkClosed();
     if (enclosedVolume() < 0) orientation_ = -1;
+    findIncidents();
   }
   for (const NurbsSurface& s : surfaces_) periodic_.push_back(findPeriodic(s));
 }
@@ -101,6 +113,54 @@ void NurbsModel::checkClosed() const {
   }
 }
 
+std::vector<NurbsModel::Incident> NurbsModel::incidentsAt(int k, const Eigen::Vector3d& x) const {
+  const double size = bounds_.diagonal(), reach = kRelativeClosure * size;
+  const double snap = 16 * std::numeric_limits<double>::epsilon() * size;
+  std::vector<Incident> out;
+  for (const auto& root : forest_->roots) {
+    const int j = root->patch;
+    if (j == k || (root->ball.center - x).norm() > root->ball.radius + reach || nurbs::boxDistance(*root, x) > reach)
+      continue;
+    const nurbs::SearchResult r = nurbs::minimise(*forest_, patches_, nurbs::PointObjective(x, size),
+                                                  kRelativeTolerance * size, 0, -1, j);
+    if (!(r.best.value <= reach)) continue;
+    Incident in{j, r.best.s, r.best.t};
+    snapToEdges(patches_[static_cast<std::size_t>(j)], r.best.point, snap, in.s, in.t);
+    out.push_back(in);
+  }
+  return out;
+}
+
+void NurbsModel::findIncidents() {
+  const double reach = kRelativeClosure * bounds_.diagonal();
+  incidents_.resize(8 * patches_.size());
+  for (std::size_t k = 0; k < patches_.size(); ++k) {
+    const RationalBezierPatch& P = patches_[k];
+    for (int c = 0; c < 4; ++c) incidents_[8 * k + c] = incidentsAt(static_cast<int>(k), P.evaluate(c & 1, c >> 1));
+    for (int e = 0; e < 4; ++e) {
+      // Edge e from (a0) to (a1) in (s, t); its neighbour must run along all of it, else the query searches.
+      const Eigen::Vector2d a0 = e < 2 ? Eigen::Vector2d(e, 0) : Eigen::Vector2d(0, e - 2);
+      const Eigen::Vector2d a1 = e < 2 ? Eigen::Vector2d(e, 1) : Eigen::Vector2d(1, e - 2);
+      const Eigen::Vector2d mid = 0.5 * (a0 + a1);
+      std::vector<Incident> along = incidentsAt(static_cast<int>(k), P.evaluate(mid[0], mid[1]));
+      if (along.size() != 1) continue;
+      const Incident& n = along.front();
+      const RationalBezierPatch& Q = patches_[static_cast<std::size_t>(n.patch)];
+      const bool onS = n.s == 0 || n.s == 1, onT = n.t == 0 || n.t == 1;
+      if (onS == onT) continue;
+      const Eigen::Vector3d b0 = onS ? Q.evaluate(n.s, 0) : Q.evaluate(0, n.t);
+      const Eigen::Vector3d b1 = onS ? Q.evaluate(n.s, 1) : Q.evaluate(1, n.t);
+      const Eigen::Vector3d e0 = P.evaluate(a0[0], a0[1]), e1 = P.evaluate(a1[0], a1[1]);
+      const double forward = (b0 - e0).norm() + (b1 - e1).norm(), backward = (b0 - e1).norm() + (b1 - e0).norm();
+      if (std::min(forward, backward) > 2 * reach) continue;
+      // The neighbour's parameters at the edge's two ends (a query interpolates them for a first guess).
+      Incident n0{n.patch, onS ? n.s : 0.0, onS ? 0.0 : n.t}, n1{n.patch, onS ? n.s : 1.0, onS ? 1.0 : n.t};
+      if (backward < forward) std::swap(n0, n1);
+      incidents_[8 * k + 4 + static_cast<std::size_t>(e)] = {n0, n1};
+    }
+  }
+}
+
 double NurbsModel::enclosedVolume() const {
   // Divergence theorem: V = 1/3 ∫∫ S·(Su x Sv) ds dt, midpoint rule (only the sign is used).
   constexpr int kSamples = 12;
@@ -133,7 +193,7 @@ SurfacePoint NurbsModel::closestPoint(const Eigen::Vector3d& q_M) const {
   if (!q_M.allFinite()) throw InputError("NURBS point query: the query point is not finite");
   const double size = bounds_.diagonal();
   const nurbs::SearchResult r =
-      nurbs::minimise(*forest_, patches_, nurbs::PointObjective(q_M, size), kRelativeTolerance * size, kRelativeTie * size);
+      nurbs::minimise(*forest_, patches_, nurbs::PointObjective(q_M, size), kRelativeTolerance * size, 0);
   const nurbs::PatchHit& h = r.best;
   const RationalBezierPatch& P = patches_[static_cast<std::size_t>(h.patch)];
   SurfacePoint out;
@@ -143,22 +203,168 @@ SurfacePoint NurbsModel::closestPoint(const Eigen::Vector3d& q_M) const {
   out.error = std::max(0.0, h.value - r.lowerBound);
   const Eigen::Vector3d away = q_M - h.point;
   const double d = away.norm();
-  // Sum of the normals of the tied candidates at the same place (an edge or corner sees every face meeting
-  // there); ties elsewhere (the centre of a sphere) do not take part.
-  Eigen::Vector3d normal = Eigen::Vector3d::Zero();
-  for (const nurbs::PatchHit& t : r.ties)
-    if ((t.point - h.point).norm() <= kRelativeTie * size) normal += normalAt(t);
-  if (!(normal.norm() > 1e-6)) normal = normalAt(h);
-  normal.normalize();
+  // In a patch's interior the closest point is a critical point, q − p along the normal, whose sign is the side.
+  // On a patch edge or corner every face meeting there decides (insideAtBoundary): the search is asked for no
+  // ties (they held the faces at an edge only by chance).
+  const bool boundary = solid_ && (h.s == 0 || h.s == 1 || h.t == 0 || h.t == 1);
+  Eigen::Vector3d normal = normalAt(h);
+  const bool inside = boundary ? insideAtBoundary(h, away, normal) : solid_ && away.dot(normal) < 0;
   if (d <= 4 * std::numeric_limits<double>::epsilon() * (q_M.norm() + size)) {  // on the surface
     out.signedDistance = d;
     out.normal = normal;
     return out;
   }
-  const bool inside = solid_ && away.dot(normal) < 0;
   out.signedDistance = inside ? -d : d;
   out.normal = inside ? Eigen::Vector3d(-away / d) : Eigen::Vector3d(away / d);
   return out;
+}
+
+namespace {
+
+// One face of the solid's tangent cone at a point p of its surface: the tangent plane of a patch, or the part of
+// it the patch covers at p: a half-plane (p on one patch edge: `edge` along it, `into` the patch) or a wedge
+// (p a patch corner or on a collapsed edge: between the rays `edge` and `into`).
+struct ConeFace {
+  enum Kind { kPlane, kHalfPlane, kWedge } kind = kPlane;
+  Eigen::Vector3d normal, edge, into;
+  double distance = 0;  // from p + v (below)
+  // The face's angle at p (the weight of its normal at the apex).
+  double angle() const {
+    return kind == kPlane ? 2 * M_PI : kind == kHalfPlane ? M_PI : std::acos(std::clamp(edge.dot(into), -1.0, 1.0));
+  }
+};
+
+double rayDistance(const Eigen::Vector3d& v, const Eigen::Vector3d& ray) {
+  const double along = v.dot(ray);
+  return along > 0 ? (v - along * ray).norm() : v.norm();
+}
+
+// Distance from p + v to the face (within the linearised cone, whose apex is p).
+double coneFaceDistance(const ConeFace& f, const Eigen::Vector3d& v) {
+  const Eigen::Vector3d w = v - v.dot(f.normal) * f.normal;  // v in the face's plane
+  switch (f.kind) {
+    case ConeFace::kPlane:
+      return std::abs(v.dot(f.normal));
+    case ConeFace::kHalfPlane:
+      return w.dot(f.into) >= 0 ? std::abs(v.dot(f.normal)) : (v - v.dot(f.edge) * f.edge).norm();
+    case ConeFace::kWedge: {
+      const Eigen::Vector3d axis = f.edge.cross(f.into);
+      if (f.edge.cross(w).dot(axis) >= 0 && w.cross(f.into).dot(axis) >= 0) return std::abs(v.dot(f.normal));
+      return std::min(rayDistance(v, f.edge), rayDistance(v, f.into));
+    }
+  }
+  return v.norm();
+}
+
+}  // namespace
+
+bool NurbsModel::insideAtBoundary(const nurbs::PatchHit& h, const Eigen::Vector3d& away,
+                                  Eigen::Vector3d& normalSum) const {
+  const double size = bounds_.diagonal(), reach = kRelativeClosure * size;
+  const double snap = 16 * std::numeric_limits<double>::epsilon() * size;
+  // The faces on the stack (a point is on a few patches).
+  std::array<std::byte, 2048> stack;
+  std::pmr::monotonic_buffer_resource memory(stack.data(), stack.size());
+  std::pmr::vector<ConeFace> faces(&memory);
+  faces.reserve(8);
+  const auto addFaceAt = [&](int k, double s, double t, const SurfaceDerivatives& d) {
+    const RationalBezierPatch& P = patches_[static_cast<std::size_t>(k)];
+    ConeFace f;
+    if (k == h.patch) f.normal = normalSum;
+    else if (nurbs::unitNormal(d, f.normal)) f.normal *= orientation_;
+    else f.normal = patchNormal(k, s, t);
+    const bool onS = s == 0 || s == 1, onT = t == 0 || t == 1;
+    const double scale = d.du.norm() + d.dv.norm();
+    const bool flatS = d.du.norm() <= 1e-10 * scale, flatT = d.dv.norm() <= 1e-10 * scale;  // a collapsed edge
+    // Unit directions into the patch along s (at t1) and along t (at s1).
+    const double intoS = s < 0.5 ? 1 : -1, intoT = t < 0.5 ? 1 : -1;
+    const auto inS = [&](double t1) { return Eigen::Vector3d(intoS * P.derivatives(s, t1).du.normalized()); };
+    const auto inT = [&](double s1) { return Eigen::Vector3d(intoT * P.derivatives(s1, t).dv.normalized()); };
+    if (onT && flatS) {  // a pole: the patch spans the wedge between its edges s = 0 and s = 1 leaving it
+      f.kind = ConeFace::kWedge;
+      f.edge = inT(0);
+      f.into = inT(1);
+    } else if (onS && flatT) {
+      f.kind = ConeFace::kWedge;
+      f.edge = inS(0);
+      f.into = inS(1);
+    } else if (onS && onT) {
+      f.kind = ConeFace::kWedge;
+      f.edge = intoS * d.du.normalized();
+      f.into = intoT * d.dv.normalized();
+    } else if (onS || onT) {
+      f.kind = ConeFace::kHalfPlane;
+      f.edge = (onS ? d.dv : d.du).normalized();
+      const Eigen::Vector3d in = onS ? Eigen::Vector3d(intoS * d.du) : Eigen::Vector3d(intoT * d.dv);
+      f.into = (in - in.dot(f.edge) * f.edge).normalized();
+    }
+    faces.push_back(f);
+  };
+  const auto addFace = [&](int k, double s, double t) {
+    addFaceAt(k, s, t, patches_[static_cast<std::size_t>(k)].derivatives(s, t));
+  };
+  addFace(h.patch, h.s, h.t);
+  // The other faces meeting at p: those through the same corner of the patch (or its collapsed edge: a pole), or
+  // along the same edge, as found at construction (the search's own ties held them only by chance: it missed the
+  // bottom face of a box under an edge). Where the edge has no known neighbour, or the neighbour's point at p is
+  // not found, a search of each patch through p.
+  const std::size_t base = 8 * static_cast<std::size_t>(h.patch);
+  const bool onS = h.s == 0 || h.s == 1, onT = h.t == 0 || h.t == 1;
+  const auto corner = [](double s, double t) { return static_cast<std::size_t>((s == 1 ? 1 : 0) + (t == 1 ? 2 : 0)); };
+  bool known = true;
+  if (onS && onT) {
+    for (const Incident& in : incidents_[base + corner(h.s, h.t)]) addFace(in.patch, in.s, in.t);
+  } else if (faces.front().kind == ConeFace::kWedge) {  // on a collapsed edge: any of its corners
+    for (const Incident& in : incidents_[base + (onS ? corner(h.s, 0) : corner(0, h.t))]) addFace(in.patch, in.s, in.t);
+  } else {
+    // The neighbour's point at p: interpolated between the edge's ends (exact where the two share a
+    // parametrisation, as a NURBS surface's patches and the box's faces do), else a Newton run from there.
+    const std::vector<Incident>& ends = incidents_[base + 4 + (onS ? (h.s == 1 ? 1 : 0) : (h.t == 1 ? 3 : 2))];
+    known = ends.size() == 2;
+    if (known) {
+      const int j = ends[0].patch;
+      const RationalBezierPatch& Q = patches_[static_cast<std::size_t>(j)];
+      const double a = onS ? h.t : h.s;
+      const double s = ends[0].s + a * (ends[1].s - ends[0].s), t = ends[0].t + a * (ends[1].t - ends[0].t);
+      const SurfaceDerivatives d = Q.derivatives(s, t);
+      if ((d.point - h.point).norm() <= snap) {
+        addFaceAt(j, s, t, d);
+      } else {
+        nurbs::PatchHit n = nurbs::polish(Q, j, nurbs::PointObjective(h.point, size), s, t);
+        snapToEdges(Q, n.point, snap, n.s, n.t);
+        known = n.value <= reach && (n.s == 0 || n.s == 1 || n.t == 0 || n.t == 1);
+        if (known) addFace(j, n.s, n.t);
+      }
+    }
+  }
+  if (!known) {
+    faces.resize(1);
+    for (const Incident& in : incidentsAt(h.patch, h.point)) addFace(in.patch, in.s, in.t);
+  }
+  bool crease = false;
+  for (const ConeFace& f : faces) crease = crease || (f.normal - faces.front().normal).norm() > kCreaseAngle;
+  // A seam or a pole (every normal the same): q − p is along it.
+  if (!crease) return away.dot(normalSum) < 0;
+  // Near p the solid is its tangent cone (the faces above). Its nearest feature to q decides (the pseudonormal
+  // rule of Bærentzen and Aanæs, exact for a polyhedral surface): a face by its normal, an edge the faces share
+  // by the sum of their normals, the apex by the sum weighted by the faces' angles there.
+  double nearest = std::numeric_limits<double>::infinity();
+  for (ConeFace& f : faces) {
+    f.distance = coneFaceDistance(f, away);
+    nearest = std::min(nearest, f.distance);
+  }
+  const bool vertex =
+      std::any_of(faces.begin(), faces.end(), [](const ConeFace& f) { return f.kind == ConeFace::kWedge; });
+  const bool apex = vertex && nearest >= (1 - 1e-9) * away.norm();
+  normalSum.setZero();
+  Eigen::Vector3d pseudo = Eigen::Vector3d::Zero();
+  for (const ConeFace& f : faces) {
+    normalSum += f.normal;
+    if (apex) pseudo += f.angle() * f.normal;
+    else if (f.distance <= nearest + 1e-9 * away.norm()) pseudo += f.normal;
+  }
+  normalSum = normalSum.norm() > 1e-6 ? Eigen::Vector3d(normalSum.normalized()) : faces.front().normal;
+  return away.dot(pseudo) < 0;
 }
 
 Eigen::Vector3d NurbsModel::support(const Eigen::Vector3d& dir_M) const {
@@ -240,6 +446,7 @@ std::size_t NurbsModel::memoryBytes() const {
     bytes += sizeof(s) + (s.knotsU().size() + s.knotsV().size()) * sizeof(double) +
              static_cast<std::size_t>(s.countU() * s.countV()) * sizeof(Eigen::Vector4d);
   for (const RationalBezierPatch& p : patches_) bytes += sizeof(p) + 2 * p.net.size() * sizeof(Eigen::Vector4d);
+  for (const std::vector<Incident>& v : incidents_) bytes += sizeof(v) + v.capacity() * sizeof(Incident);
   return bytes;
 }
 

@@ -115,8 +115,9 @@ PatchHit polish(const RationalBezierPatch& patch, int index, const Objective& f,
 }
 
 SearchResult minimise(const PatchForest& forest, const std::vector<RationalBezierPatch>& patches, const Objective& f,
-                      double tolerance, double tieTolerance, int skip) {
+                      double tolerance, double tieTolerance, int skip, int only) {
   SearchResult out;
+  const auto excluded = [skip, only](int patch) { return patch == skip || (only >= 0 && patch != only); };
   out.best.value = std::numeric_limits<double>::infinity();
   // The query's buffers on the stack, spilling to the heap only in a long search.
   std::array<std::byte, kStackBytes> stack;
@@ -150,9 +151,9 @@ SearchResult minimise(const PatchForest& forest, const std::vector<RationalBezie
   const std::size_t samples = start.samples.size();
   std::pmr::vector<double> values(std::max(samples, start.nodes.size()), &memory);
   f.startRanks(start, values.data());
-  if (skip >= 0)
+  if (skip >= 0 || only >= 0)
     for (std::size_t k = 0; k < samples; ++k)
-      if (start.samples[k].patch == skip) values[k] = std::numeric_limits<double>::infinity();
+      if (excluded(start.samples[k].patch)) values[k] = std::numeric_limits<double>::infinity();
   // Plain locals in the loops (the offers write `keep` and the buffers through references the compiler must
   // otherwise reload).
   const double* ranks = values.data();
@@ -178,7 +179,7 @@ SearchResult minimise(const PatchForest& forest, const std::vector<RationalBezie
   }
   f.startBounds(start, out.best.value - tolerance, values.data());
   for (std::size_t k = 0; k < start.nodes.size(); ++k)
-    if (values[k] < out.best.value - tolerance && start.nodes[k]->patch != skip) open.push({values[k], start.nodes[k], 0});
+    if (values[k] < out.best.value - tolerance && !excluded(start.nodes[k]->patch)) open.push({values[k], start.nodes[k], 0});
   while (!open.empty()) {
     const Open top = open.top();
     if (top.lower >= out.best.value - tolerance) break;
@@ -193,9 +194,10 @@ SearchResult minimise(const PatchForest& forest, const std::vector<RationalBezie
     if (!mayHoldCritical(n, f.criticalDirections(n.ball), false)) continue;
     // Deep pieces that cannot improve on the best by the tolerance (a Bernstein bound: every piece ties at the
     // centre of a sphere, where balls never prune, and the search would split them all down to the tolerance),
-    // except around the best point, whose neighbours' ties decide which side of an edge a point is on (the
-    // solid's sign). Shallow pieces are left to the balls: pruning them early measured slower overall (the
-    // depth search's witnesses change), and an ordinary query is done before this depth.
+    // except around the best point, whose neighbours hold the ties a caller may ask for (the point query no
+    // longer does: NurbsModel finds the faces at an edge itself). Shallow pieces are left to the balls: pruning
+    // them early measured slower overall (the depth search's witnesses change), and an ordinary query is done
+    // before this depth.
     if (n.depth >= kTightBoundDepth && (out.best.point - n.ball.center).norm() > n.ball.radius + tieTolerance &&
         f.tightLowerBound(n) >= out.best.value - tolerance)
       continue;

@@ -79,10 +79,10 @@ struct SearchResult {
   int unproved = 0;
 };
 
-/// Global minimum of the objective over every patch, to `tolerance` (absolute). Patches in `skip` are left out
-/// (-1 for none).
+/// Global minimum of the objective over every patch, to `tolerance` (absolute). Patch `skip` is left out, or
+/// every patch but `only` (-1 for none).
 SearchResult minimise(const PatchForest& forest, const std::vector<RationalBezierPatch>& patches, const Objective& f,
-                      double tolerance, double tieTolerance, int skip = -1);
+                      double tolerance, double tieTolerance, int skip = -1, int only = -1);
 
 /// Box-constrained Newton on patch from (s, t); returns the best point reached.
 PatchHit polish(const RationalBezierPatch& patch, int index, const Objective& f, double s, double t);

@@ -21,10 +21,9 @@ constexpr int kHullGjkCap = 200;    // GJK on two small hulls converges in a few
 constexpr int kMaxPatchDepth = 40;  // beyond this, rounding and not the bound limits the nodes
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kEps = std::numeric_limits<double>::epsilon();
-// The point query decides a point's side by the normals of its candidates within 1e-9 × the model size: closer
-// to the surface than that, its sign is not to be relied on (seen: a cloud point 1.1e-9 outside a NURBS box's
-// edge answered inside).
-constexpr double kUnsureSide = 1e-9;
+// The point query's side is reliable down to its own rounding (a few ulps of the coordinates × the model size,
+// nurbs_sign_test.cpp); a point closer than this to the surface, moved into A's frame, is on it.
+constexpr double kUnsureSide = 64 * kEps;
 
 using Node = nurbs::PatchNode;
 
@@ -326,8 +325,7 @@ DistanceResult nurbsCloud(const PosedModel& a, const PosedModel& b, const QueryC
   if (ma.isSolid()) {
     InsideSearch inside(field, ctx.tolerance, budget);
     const bool done = inside.run();
-    // Points inside only by the point query's unsure margin: the generic routine decides (as nurbs_mesh does
-    // for touching solids).
+    // Points inside only by rounding: the generic routine decides (as nurbs_mesh does for touching solids).
     if (inside.deepestPoint() && -inside.deepestPoint()->signedDistance <= kUnsureSide * field.size())
       return genericPair(a, b, ctx);
     if (inside.deepestPoint()) {
