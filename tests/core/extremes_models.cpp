@@ -10,6 +10,7 @@
 namespace extremes {
 namespace {
 
+using nurbs_fixtures::boxPatches;
 using nurbs_fixtures::Net;
 using unidist::NurbsModel;
 using unidist::NurbsSurface;
@@ -51,28 +52,6 @@ Body nurbsBall(double r, NurbsSurface s, std::string label) {
 /// Flat square [-s, s]^2 at z = 0, n x n quads, two triangles each (open).
 meshfix::Soup flatSheet(double s, int n) {
   return meshfix::heightSheet(s, n, [](double, double) { return 0.0; });
-}
-
-/// The box as six bilinear patches, each with Su x Sv outward.
-std::vector<NurbsSurface> boxPatches(const Vec& h) {
-  std::vector<NurbsSurface> faces;
-  for (int axis = 0; axis < 3; ++axis)
-    for (double side : {1.0, -1.0}) {
-      // (axis, b, c) cyclic: e_b x e_c = e_axis; the -axis face swaps u and v.
-      const int b = (axis + 1) % 3, c = (axis + 2) % 3;
-      const int u = side > 0 ? b : c, v = side > 0 ? c : b;
-      Net net(2);
-      for (int i = 0; i < 2; ++i)
-        for (int j = 0; j < 2; ++j) {
-          Vec p = Vec::Zero();
-          p[axis] = side * h[axis];
-          p[u] = (2 * i - 1) * h[u];
-          p[v] = (2 * j - 1) * h[v];
-          net[static_cast<std::size_t>(i)].emplace_back(p.x(), p.y(), p.z(), 1.0);
-        }
-      faces.emplace_back(1, 1, std::vector<double>{0, 0, 1, 1}, std::vector<double>{0, 0, 1, 1}, net);
-    }
-  return faces;
 }
 
 /// Biquadratic flat square with uneven weights (the image is still the whole square: its boundary curves have

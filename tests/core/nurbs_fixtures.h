@@ -64,4 +64,26 @@ inline unidist::NurbsSurface wavySurface() {
   return {3, 3, k, k, net};
 }
 
+/// The box of half extents h as six bilinear patches, each with Su x Sv outward.
+inline std::vector<unidist::NurbsSurface> boxPatches(const Eigen::Vector3d& h) {
+  std::vector<unidist::NurbsSurface> faces;
+  for (int axis = 0; axis < 3; ++axis)
+    for (double side : {1.0, -1.0}) {
+      // (axis, b, c) cyclic: e_b x e_c = e_axis; the -axis face swaps u and v.
+      const int b = (axis + 1) % 3, c = (axis + 2) % 3;
+      const int u = side > 0 ? b : c, v = side > 0 ? c : b;
+      Net net(2);
+      for (int i = 0; i < 2; ++i)
+        for (int j = 0; j < 2; ++j) {
+          Eigen::Vector3d p = Eigen::Vector3d::Zero();
+          p[axis] = side * h[axis];
+          p[u] = (2 * i - 1) * h[u];
+          p[v] = (2 * j - 1) * h[v];
+          net[static_cast<std::size_t>(i)].emplace_back(p.x(), p.y(), p.z(), 1.0);
+        }
+      faces.emplace_back(1, 1, std::vector<double>{0, 0, 1, 1}, std::vector<double>{0, 0, 1, 1}, net);
+    }
+  return faces;
+}
+
 }  // namespace nurbs_fixtures

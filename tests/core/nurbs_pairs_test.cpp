@@ -4,6 +4,7 @@
 #include "bench/nurbs_truth.h"
 #include "mesh_fixtures.h"
 #include "nurbs_fixtures.h"
+#include "nurbs_pair_helpers.h"
 #include "unidist/distance.h"
 #include "unidist/mesh.h"
 #include "unidist/nurbs.h"
@@ -21,21 +22,8 @@ namespace unidist {
 namespace {
 
 using namespace nurbs_fixtures;
+using namespace nurbs_pair_helpers;
 using Vec = Eigen::Vector3d;
-
-std::shared_ptr<NurbsModel> solid(NurbsSurface s) {
-  std::vector<NurbsSurface> v;
-  v.push_back(std::move(s));
-  return std::make_shared<NurbsModel>(std::move(v), true);
-}
-
-Eigen::Isometry3d randomPose(std::mt19937& rng, double spread) {
-  std::uniform_real_distribution<double> u(-1, 1);
-  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
-  X.linear() = Eigen::Quaterniond(u(rng), u(rng), u(rng), u(rng)).normalized().toRotationMatrix();
-  X.translation() = spread * Vec(u(rng), u(rng), u(rng));
-  return X;
-}
 
 double boxSignedDistance(const Vec& h, const Vec& q) {
   const Vec d = q.cwiseAbs() - h;
@@ -44,12 +32,6 @@ double boxSignedDistance(const Vec& h, const Vec& q) {
 
 double torusSignedDistance(double R, double a, const Vec& q) {
   return std::hypot(std::hypot(q.x(), q.y()) - R, q.z()) - a;
-}
-
-void expectBracket(const DistanceResult& r, double truth, double slack) {
-  EXPECT_LE(r.lowerBound, truth + slack);
-  EXPECT_GE(r.upperBound, truth - slack);
-  EXPECT_NEAR(r.distance, truth, slack + (r.upperBound - r.lowerBound));
 }
 
 TEST(NurbsConvex, BoxAgainstSphereSeparatedIsExactAndCertified) {

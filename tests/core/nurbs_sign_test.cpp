@@ -19,27 +19,6 @@ namespace {
 using namespace nurbs_fixtures;
 using Vec = Eigen::Vector3d;
 
-/// The box of the extremes suite (tests/core/extremes_models.cpp): one bilinear patch per face, outward Su x Sv.
-std::vector<NurbsSurface> boxPatches(const Vec& h) {
-  std::vector<NurbsSurface> faces;
-  for (int axis = 0; axis < 3; ++axis)
-    for (double side : {1.0, -1.0}) {
-      const int b = (axis + 1) % 3, c = (axis + 2) % 3;
-      const int u = side > 0 ? b : c, v = side > 0 ? c : b;
-      Net net(2);
-      for (int i = 0; i < 2; ++i)
-        for (int j = 0; j < 2; ++j) {
-          Vec p = Vec::Zero();
-          p[axis] = side * h[axis];
-          p[u] = (2 * i - 1) * h[u];
-          p[v] = (2 * j - 1) * h[v];
-          net[static_cast<std::size_t>(i)].emplace_back(p.x(), p.y(), p.z(), 1.0);
-        }
-      faces.emplace_back(1, 1, std::vector<double>{0, 0, 1, 1}, std::vector<double>{0, 0, 1, 1}, net);
-    }
-  return faces;
-}
-
 const Vec kHalf(0.45, 0.35, 0.25);
 
 double boxDistance(const Vec& q) {

@@ -4,6 +4,7 @@
 // distance less both radii; a sphere is dist(centre, circle) − r − its radius from a torus).
 #include "bench/nurbs_truth.h"
 #include "nurbs_fixtures.h"
+#include "nurbs_pair_helpers.h"
 #include "unidist/distance.h"
 #include "unidist/nurbs.h"
 #include "unidist/primitives.h"
@@ -19,27 +20,8 @@ namespace unidist {
 namespace {
 
 using namespace nurbs_fixtures;
+using namespace nurbs_pair_helpers;
 using Vec = Eigen::Vector3d;
-
-std::shared_ptr<NurbsModel> solid(NurbsSurface s) {
-  std::vector<NurbsSurface> v;
-  v.push_back(std::move(s));
-  return std::make_shared<NurbsModel>(std::move(v), true);
-}
-
-Eigen::Isometry3d randomPose(std::mt19937& rng, double spread) {
-  std::uniform_real_distribution<double> u(-1, 1);
-  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
-  X.linear() = Eigen::Quaterniond(u(rng), u(rng), u(rng), u(rng)).normalized().toRotationMatrix();
-  X.translation() = spread * Vec(u(rng), u(rng), u(rng));
-  return X;
-}
-
-void expectBracket(const DistanceResult& r, double truth, double slack) {
-  EXPECT_LE(r.lowerBound, truth + slack);
-  EXPECT_GE(r.upperBound, truth - slack);
-  EXPECT_NEAR(r.distance, truth, slack + (r.upperBound - r.lowerBound));
-}
 
 TEST(TorusAsNurbs, LiesOnTheTorusWithOutwardNormalsAtEveryScale) {
   for (double scale : {1e-4, 1.0, 1e4}) {

@@ -21,6 +21,34 @@ namespace unidist {
 class TriangleMesh;
 class NurbsModel;
 
+/// A structure a primitive makes on first use, once, thread-safely; a copy of the primitive starts without one.
+template <class T>
+class LazyStandIn {
+ public:
+  LazyStandIn() = default;
+  LazyStandIn(const LazyStandIn&) {}
+  LazyStandIn& operator=(const LazyStandIn&) { return *this; }
+  /// The structure, made by make() (a std::shared_ptr<const T>) on the first call.
+  template <class Make>
+  const T& get(Make&& make) const {
+    std::call_once(once_, [&] {
+      value_ = make();
+      ready_.store(value_.get(), std::memory_order_release);
+    });
+    return *value_;
+  }
+  /// Built or not and its bytes, without building it (T complete where this is called).
+  StructureReport report(const char* name) const {
+    const T* t = ready_.load(std::memory_order_acquire);
+    return {name, t != nullptr, t ? t->memoryBytes() : 0};
+  }
+
+ private:
+  mutable std::once_flag once_;
+  mutable std::shared_ptr<const T> value_;
+  mutable std::atomic<const T*> ready_{nullptr};
+};
+
 /// Shared pieces of every primitive (no acceleration structure, constant memory).
 class Primitive : public Model {
  public:
@@ -71,15 +99,7 @@ class Box final : public Primitive {
 
  private:
   Eigen::Vector3d h_;
-  /// Lazily built stand-in; a copy of the box starts without one.
-  struct LazyMesh {
-    LazyMesh() = default;
-    LazyMesh(const LazyMesh&) {}
-    LazyMesh& operator=(const LazyMesh&) { return *this; }
-    mutable std::once_flag once;
-    mutable std::shared_ptr<const TriangleMesh> mesh;
-    mutable std::atomic<const TriangleMesh*> ready{nullptr};  // set once the mesh exists (for memoryBytes)
-  } lazyMesh_;
+  LazyStandIn<TriangleMesh> mesh_;
 };
 
 /// Segment from (0,0,-h) to (0,0,+h) swept by a ball of radius r.
@@ -168,15 +188,7 @@ class Torus final : public Primitive {
 
  private:
   double R_, r_;
-  /// Lazily built stand-in; a copy of the torus starts without one.
-  struct LazyNurbs {
-    LazyNurbs() = default;
-    LazyNurbs(const LazyNurbs&) {}
-    LazyNurbs& operator=(const LazyNurbs&) { return *this; }
-    mutable std::once_flag once;
-    mutable std::shared_ptr<const NurbsModel> model;
-    mutable std::atomic<const NurbsModel*> ready{nullptr};  // set once the model exists (for memoryBytes)
-  } lazyNurbs_;
+  LazyStandIn<NurbsModel> nurbs_;
 };
 
 /// Solid half-space n·x <= d (n unit after construction; d scaled by 1/|n|). Unbounded: its AABB is infinite,

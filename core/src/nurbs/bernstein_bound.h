@@ -7,6 +7,7 @@
 // Internal.
 #pragma once
 
+#include "nurbs/binomial.h"
 #include "unidist/nurbs.h"
 
 #include <algorithm>
@@ -18,49 +19,55 @@ namespace unidist::nurbs {
 
 /// Buffers of bernsteinDistanceBound, kept by its caller across the nodes of one query (no allocation per node).
 struct BernsteinScratch {
-  std::vector<double> A, W, binomialU, binomialV;
-  std::vector<Eigen::Vector3d> a;
+  std::vector<double> A, W;
+  std::vector<Eigen::Vector3d> y;
 };
 
-/// C(n, k) for k = 0..n into `out`.
-inline void binomialRow(int n, std::vector<double>& out) {
-  out.assign(static_cast<std::size_t>(n + 1), 1.0);
-  for (int k = 1; k <= n; ++k) out[static_cast<std::size_t>(k)] = out[static_cast<std::size_t>(k - 1)] * (n - k + 1) / k;
+/// |X − q·W|² (into A) and W² (into W) in Bernstein form of degree (2n, 2m), coefficient (k, l) at k·(2m + 1) + l:
+/// products of the patch's degree-(n, m) forms, each coefficient a mean of products of control points (the
+/// weights C(n,i)·C(n,k−i) / C(2n,k) sum to one over i, likewise in m), each unordered pair of points taken once.
+/// y (net.size() entries) receives X_ij − q·W_ij. Coeffs: anything with assign(size, value) and operator[].
+template <class Coeffs>
+void squaredDistanceForm(const RationalBezierPatch& patch, const Eigen::Vector3d& q, Eigen::Vector3d* y, Coeffs& A,
+                         Coeffs& W) {
+  const int n = patch.degreeU, m = patch.degreeV;
+  const std::size_t cols = static_cast<std::size_t>(2 * m + 1);
+  A.assign(static_cast<std::size_t>(2 * n + 1) * cols, 0.0);
+  W.assign(static_cast<std::size_t>(2 * n + 1) * cols, 0.0);
+  double cu[kMaxNurbsDegree + 1], cv[kMaxNurbsDegree + 1], inverseU[2 * kMaxNurbsDegree + 1],
+      inverseV[2 * kMaxNurbsDegree + 1];
+  for (int i = 0; i <= n; ++i) cu[i] = binomial(n, i);
+  for (int j = 0; j <= m; ++j) cv[j] = binomial(m, j);
+  for (int k = 0; k <= 2 * n; ++k) inverseU[k] = 1 / binomial(2 * n, k);
+  for (int l = 0; l <= 2 * m; ++l) inverseV[l] = 1 / binomial(2 * m, l);
+  const int count = (n + 1) * (m + 1);
+  for (int k = 0; k < count; ++k) y[k] = patch.net[static_cast<std::size_t>(k)].head<3>() - q * patch.net[static_cast<std::size_t>(k)][3];
+  for (int k1 = 0; k1 < count; ++k1) {
+    const int i = k1 / (m + 1), j = k1 % (m + 1);
+    const double w1 = patch.net[static_cast<std::size_t>(k1)][3];
+    for (int k2 = k1; k2 < count; ++k2) {
+      const int i2 = k2 / (m + 1), j2 = k2 % (m + 1);
+      const double f = (k2 == k1 ? 1.0 : 2.0) * cu[i] * cu[i2] * inverseU[i + i2] * cv[j] * cv[j2] * inverseV[j + j2];
+      const std::size_t kl = static_cast<std::size_t>(i + i2) * cols + static_cast<std::size_t>(j + j2);
+      A[kl] += f * y[k1].dot(y[k2]);
+      W[kl] += f * w1 * patch.net[static_cast<std::size_t>(k2)][3];
+    }
+  }
 }
 
 /// Proved: |S(s,t) − q| >= this on the whole patch (rounding allowance included).
 inline double bernsteinDistanceBound(const RationalBezierPatch& patch, const Eigen::Vector3d& q, BernsteinScratch& w) {
   const int n = patch.degreeU, m = patch.degreeV;
-  const std::size_t cols = static_cast<std::size_t>(2 * m + 1);
-  w.A.assign(static_cast<std::size_t>(2 * n + 1) * cols, 0.0);
-  w.W.assign(w.A.size(), 0.0);
-  w.a.resize(patch.net.size());
-  binomialRow(n, w.binomialU);
-  binomialRow(m, w.binomialV);
+  w.y.resize(patch.net.size());
+  squaredDistanceForm(patch, q, w.y.data(), w.A, w.W);
   double magnitude = 0;
-  for (std::size_t k = 0; k < patch.net.size(); ++k) {
-    w.a[k] = patch.net[k].head<3>() - q * patch.net[k][3];
-    magnitude = std::max(magnitude, w.a[k].norm() / patch.net[k][3]);
-  }
-  const auto index = [m](int i, int j) { return static_cast<std::size_t>(i * (m + 1) + j); };
-  for (int i = 0; i <= n; ++i)
-    for (int j = 0; j <= m; ++j) {
-      const double cij = w.binomialU[static_cast<std::size_t>(i)] * w.binomialV[static_cast<std::size_t>(j)];
-      for (int i2 = 0; i2 <= n; ++i2)
-        for (int j2 = 0; j2 <= m; ++j2) {
-          const double c = cij * w.binomialU[static_cast<std::size_t>(i2)] * w.binomialV[static_cast<std::size_t>(j2)];
-          const std::size_t kl = static_cast<std::size_t>(i + i2) * cols + static_cast<std::size_t>(j + j2);
-          w.A[kl] += c * w.a[index(i, j)].dot(w.a[index(i2, j2)]);
-          w.W[kl] += c * patch.net[index(i, j)][3] * patch.net[index(i2, j2)][3];
-        }
-    }
-  // The common factor 1 / (C(2n,k)·C(2m,l)) cancels in each ratio.
+  for (std::size_t k = 0; k < patch.net.size(); ++k) magnitude = std::max(magnitude, w.y[k].norm() / patch.net[k][3]);
   double least = std::numeric_limits<double>::infinity();
   for (std::size_t kl = 0; kl < w.A.size(); ++kl) {
     if (!(w.W[kl] > 0)) return 0;  // not a positive-weight patch: no bound
     least = std::min(least, w.A[kl] / w.W[kl]);
   }
-  // Each coefficient is a sum of (n+1)²(m+1)² products, each exact to a few ulps of magnitude².
+  // Each coefficient is a mean of up to (n+1)(m+1) products, each exact to a few ulps of magnitude².
   const double rounding = 8.0 * (n + 1) * (m + 1) * std::numeric_limits<double>::epsilon() * magnitude;
   return std::max(0.0, std::sqrt(std::max(0.0, least)) - rounding - 1e-15 * q.cwiseAbs().maxCoeff());
 }

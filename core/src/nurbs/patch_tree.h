@@ -10,6 +10,7 @@
 #include <atomic>
 #include <memory>
 #include <mutex>
+#include <utility>
 #include <vector>
 
 namespace unidist::nurbs {
@@ -80,6 +81,22 @@ struct PatchNode {
 };
 
 constexpr int kCachedDepth = 7;
+
+/// A value per node made once during one search (a separator's certified extreme), looked up by the node.
+class NodeMemo {
+ public:
+  template <class Make>
+  double get(const PatchNode& node, Make&& make) {
+    for (const auto& [key, value] : entries_)
+      if (key == &node) return value;
+    const double value = make();
+    entries_.emplace_back(&node, value);
+    return value;
+  }
+
+ private:
+  std::vector<std::pair<const PatchNode*, double>> entries_;
+};
 
 /// Proved: |q − x| >= this for every point x of the node's subpatch (the distance from q to its frame box).
 double boxDistance(const PatchNode& n, const Eigen::Vector3d& q);

@@ -65,44 +65,33 @@ std::optional<SupportBall> SupportBall::fit(const RationalBezierPatch& patchA, c
   const double kB = leastCurvatureAway(patchB, xB, -(X_AB.linear().transpose() * n));
   if (!std::isfinite(kA) || !std::isfinite(kB)) return std::nullopt;
   // The inner side needs a strictly convex contact; the outer side may curve toward it by less than the larger
-  // ball. (Both convex is the support plane's case.)
-  // A ball that barely fits (a circle of minima: the outer surface curves toward the inner as much as it can)
-  // leaves no margin for the certificates to settle anything and costs them at every pair.
-  const auto fits = [d](double kInner, double kOuter) {
-    if (!(kInner > 0)) return false;
-    if (kOuter >= 0) return true;
+  // ball (both convex is the support plane's case). A ball that barely fits (a circle of minima: the outer
+  // surface curves toward the inner as much as it can) leaves no margin for the certificates to settle anything
+  // and costs them at every pair. The radius for each choice of inner side, NaN where none fits:
+  const auto radiusFor = [d](double kInner, double kOuter) {
+    if (!(kInner > 0) || (kOuter < 0 && !(1 / kInner + d < -1 / kOuter))) return std::nan("");
     const double rho = balancedRadius(kInner, kOuter, d);
-    return kInner - 1 / rho > kMinMargin * kInner;
+    return kOuter >= 0 || kInner - 1 / rho > kMinMargin * kInner ? rho : std::nan("");
   };
+  const double rhoB = radiusFor(kB, kA), rhoA = radiusFor(kA, kB);
+  if (std::isnan(rhoB) && std::isnan(rhoA)) return std::nullopt;
   SupportBall ball;
-  if (fits(kB, kA) && (kB >= kA || !fits(kA, kB))) {
-    ball.innerIsB_ = true;
-    ball.radius_ = balancedRadius(kB, kA, d);
-    ball.centreA_ = pB + ball.radius_ * n;
-  } else if (fits(kA, kB)) {
-    ball.innerIsB_ = false;
-    ball.radius_ = balancedRadius(kA, kB, d);
-    ball.centreA_ = pA - ball.radius_ * n;
-  } else {
-    return std::nullopt;
-  }
+  ball.innerIsB_ = !std::isnan(rhoB) && (kB >= kA || std::isnan(rhoA));
+  ball.radius_ = ball.innerIsB_ ? rhoB : rhoA;
+  ball.centreA_ = ball.innerIsB_ ? Eigen::Vector3d(pB + ball.radius_ * n) : Eigen::Vector3d(pA - ball.radius_ * n);
   ball.centreB_ = X_AB.inverse() * ball.centreA_;
   ball.contactA_ = pA;
   ball.contactB_ = X_AB.inverse() * pB;
   return ball;
 }
 
-double SupportBall::certified(Cache& cache, const PatchNode& node, const Eigen::Vector3d& centre,
+double SupportBall::certified(NodeMemo& memo, const PatchNode& node, const Eigen::Vector3d& centre,
                               const Eigen::Vector3d& contact, bool farthest) {
-  for (const auto& [key, value] : cache)
-    if (key == &node) return value;
-  const bool exact = (node.ball.center - contact).norm() <= kExactReach * node.ball.radius;
-  ExtremeRequest request;
-  request.exact = exact;
-  const DistanceExtreme e = certifyDistanceExtreme(node.net, centre, farthest, request);
-  const double value = e.proved ? e.value : (farthest ? kInf : 0.0);
-  cache.emplace_back(&node, value);
-  return value;
+  return memo.get(node, [&] {
+    const bool exact = (node.ball.center - contact).norm() <= kExactReach * node.ball.radius;
+    const DistanceExtreme e = certifyDistanceExtreme(node.net, centre, farthest, exact);
+    return e.proved ? e.value : (farthest ? kInf : 0.0);
+  });
 }
 
 double SupportBall::gap(const PatchNode& na, const PatchNode& nb, double needed) {

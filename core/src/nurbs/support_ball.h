@@ -11,8 +11,6 @@
 #include "nurbs/patch_tree.h"
 
 #include <optional>
-#include <utility>
-#include <vector>
 
 namespace unidist::nurbs {
 
@@ -33,19 +31,18 @@ class SupportBall {
   bool innerIsB() const { return innerIsB_; }
 
  private:
-  using Cache = std::vector<std::pair<const PatchNode*, double>>;
   /// The least (near) or greatest distance from the centre over the node, certified (near: 0 and far: +inf
   /// when not proved).
   /// Exact (by concavity) only for a node at the touching point `contact`; elsewhere the surface is clear of the
   /// sphere by a margin and the coefficient bound, second order in the node size, is what is worth its cost.
-  double certified(Cache& cache, const PatchNode& node, const Eigen::Vector3d& centre, const Eigen::Vector3d& contact,
+  double certified(NodeMemo& memo, const PatchNode& node, const Eigen::Vector3d& centre, const Eigen::Vector3d& contact,
                    bool farthest);
 
   bool innerIsB_ = true;
   double radius_ = 0;
   Eigen::Vector3d centreA_ = Eigen::Vector3d::Zero(), centreB_ = Eigen::Vector3d::Zero();
   Eigen::Vector3d contactA_ = Eigen::Vector3d::Zero(), contactB_ = Eigen::Vector3d::Zero();  // pA, pB, own frames
-  Cache nearA_, farA_, nearB_, farB_;
+  NodeMemo nearA_, farA_, nearB_, farB_;
 };
 
 }  // namespace unidist::nurbs

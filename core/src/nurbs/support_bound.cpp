@@ -1,5 +1,6 @@
 #include "nurbs/support_bound.h"
 
+#include "nurbs/bernstein_bound.h"
 #include "nurbs/bspline.h"
 
 #include <algorithm>
@@ -15,9 +16,6 @@ namespace {
 constexpr double kEps = std::numeric_limits<double>::epsilon();
 constexpr int kNewtonSteps = 12;
 
-/// The Bernstein coefficients (degrees p, q) of a numerator a and a positive denominator w whose ratio g = a / w
-/// is maximised: h_c = a − c·w <= 0 wherever g <= c. `error`: how far each a − c·w coefficient may be off,
-/// per unit of (|a| + |c|·w) (rounding of their computation).
 /// Coefficients on the stack for the common degrees (up to a bicubic patch's squared distance, 7 × 7), on the
 /// heap beyond: a certificate is asked of many nodes per query.
 class Coefficients {
@@ -48,6 +46,9 @@ class Coefficients {
   std::size_t size_ = 0;
 };
 
+/// The Bernstein coefficients (degrees p, q) of a numerator a and a positive denominator w whose ratio g = a / w
+/// is maximised: h_c = a − c·w <= 0 wherever g <= c. `error`: how far each a − c·w coefficient may be off,
+/// per unit of (|a| + |c|·w) (rounding of their computation).
 struct Heights {
   int p = 0, q = 0;
   Coefficients a, w;
@@ -153,7 +154,7 @@ std::pair<Eigen::Vector2d, Height> maximiser(const HeightAt& heightAt, Eigen::Ve
 /// max over the square of g = a / w, proved (or not proved) by concavity of h_c at the maximiser; heightAt(x)
 /// evaluates g exactly (from the patch, not from a and w).
 template <class HeightAt>
-SupportBound certifyMaximum(const Heights& h, const HeightAt& heightAt, const Eigen::Vector2d* given = nullptr) {
+SupportBound certifyMaximum(const Heights& h, const HeightAt& heightAt) {
   double wLow = std::numeric_limits<double>::infinity();
   std::size_t highest = 0;
   for (std::size_t k = 0; k < h.w.size(); ++k) {
@@ -162,16 +163,13 @@ SupportBound certifyMaximum(const Heights& h, const HeightAt& heightAt, const Ei
     if (h.a[k] * h.w[highest] > h.a[highest] * h.w[k]) highest = k;
   }
   if (!(wLow > 0)) return {};
-  // Concavity for the value at the start (the caller's estimate of the maximiser, else the Greville point of
-  // the highest coefficient) first: where it fails (a saddle, a node curving toward the level set) the
-  // maximiser is not worth searching for. From the caller's estimate Newton still runs: the tangent plane's
-  // gradient, which the bound pays for, shrinks with each step after the value stopped changing.
+  // Concavity for the value at the start (the Greville point of the highest coefficient) first: where it fails
+  // (a saddle, a node curving toward the level set) the maximiser is not worth searching for.
   const int i = static_cast<int>(highest) / (h.q + 1), j = static_cast<int>(highest) % (h.q + 1);
-  const Eigen::Vector2d start = given ? Eigen::Vector2d(given->cwiseMax(0.0).cwiseMin(1.0))
-                                      : Eigen::Vector2d(double(i) / h.p, double(j) / h.q);
+  const Eigen::Vector2d start(double(i) / h.p, double(j) / h.q);
   const Height atStart = heightAt(start);
   double delta = 0;
-  if (!given && !concave(h, atStart.g, delta)) return {};
+  if (!concave(h, atStart.g, delta)) return {};
   const auto [x0, at] = maximiser(heightAt, start, atStart);
   const double c = at.g;
   if (!std::isfinite(c) || !concave(h, c, delta)) return {};
@@ -212,52 +210,25 @@ SupportBound certifySupport(const RationalBezierPatch& patch, const Eigen::Vecto
 }
 
 DistanceExtreme certifyDistanceExtreme(const RationalBezierPatch& patch, const Eigen::Vector3d& c, bool farthest,
-                                       const ExtremeRequest& request) {
+                                       bool exact) {
   const int n = patch.degreeU, m = patch.degreeV;
   if (2 * std::max(n, m) > kMaxNurbsDegree) return {};  // beyond the Bernstein evaluation's fixed rows
-  // ±|X − c·W|² and W² in Bernstein form of degree (2n, 2m): products of the degree-(n, m) forms, each
-  // coefficient a weighted mean of the products (Vandermonde: the weights C(n,i)C(n,k−i)/C(2n,k) sum to one).
+  // ±|X − c·W|² and W² in Bernstein form of degree (2n, 2m) (bernstein_bound.h).
   const double sign = farthest ? 1.0 : -1.0;
   Heights h;
   h.p = 2 * n;
   h.q = 2 * m;
-  const std::size_t cols = static_cast<std::size_t>(h.q + 1);
-  h.a.assign(static_cast<std::size_t>(h.p + 1) * cols, 0.0);
-  h.w.assign(h.a.size(), 0.0);
   std::array<Eigen::Vector3d, 16> yLocal;
   std::vector<Eigen::Vector3d> yHeap(patch.net.size() > yLocal.size() ? patch.net.size() : 0);
   Eigen::Vector3d* y = yHeap.empty() ? yLocal.data() : yHeap.data();
+  squaredDistanceForm(patch, c, y, h.a, h.w);
+  if (!farthest)
+    for (std::size_t k = 0; k < h.a.size(); ++k) h.a[k] = -h.a[k];
   double magnitude = 0, weight = 0, reach = 0;
   for (std::size_t k = 0; k < patch.net.size(); ++k) {
-    y[k] = patch.net[k].head<3>() - c * patch.net[k][3];
     magnitude = std::max(magnitude, y[k].norm());
     weight = std::max(weight, patch.net[k][3]);
     reach = std::max(reach, patch.net[k].head<3>().norm());
-  }
-  // The product's weights C(d,i)·C(d,i2) / C(2d,i+i2) per direction, tabulated once (d <= kMaxNurbsDegree / 2).
-  constexpr int kRow = kMaxNurbsDegree / 2 + 1;
-  std::array<double, kRow * kRow> fu{}, fv{};
-  const auto weights = [](int deg, std::array<double, kRow * kRow>& out) {
-    for (int i = 0; i <= deg; ++i)
-      for (int i2 = 0; i2 <= deg; ++i2)
-        out[static_cast<std::size_t>(i * kRow + i2)] = binomial(deg, i) * binomial(deg, i2) / binomial(2 * deg, i + i2);
-  };
-  weights(n, fu);
-  weights(m, fv);
-  // Each unordered pair of control points once (the weights are symmetric), twice over when they differ.
-  const int count = (n + 1) * (m + 1);
-  for (int k1 = 0; k1 < count; ++k1) {
-    const int i = k1 / (m + 1), j = k1 % (m + 1);
-    const Eigen::Vector3d& y1 = y[static_cast<std::size_t>(k1)];
-    const double w1 = patch.net[static_cast<std::size_t>(k1)][3];
-    for (int k2 = k1; k2 < count; ++k2) {
-      const int i2 = k2 / (m + 1), j2 = k2 % (m + 1);
-      const double f = (k2 == k1 ? 1.0 : 2.0) * fu[static_cast<std::size_t>(i * kRow + i2)] *
-                       fv[static_cast<std::size_t>(j * kRow + j2)];
-      const std::size_t kl = static_cast<std::size_t>(i + i2) * cols + static_cast<std::size_t>(j + j2);
-      h.a[kl] += sign * f * y1.dot(y[static_cast<std::size_t>(k2)]);
-      h.w[kl] += f * w1 * patch.net[static_cast<std::size_t>(k2)][3];
-    }
   }
   // Each coefficient is a mean of at most (n + 1)(m + 1) products y·y' (|y| <= magnitude) with rounded weights:
   // off by ((n + 1)(m + 1) + 8)·ε·magnitude²; and y = X − c·W itself is off by ε·(|X| + |c|·W), which moves a
@@ -273,8 +244,7 @@ DistanceExtreme certifyDistanceExtreme(const RationalBezierPatch& patch, const E
     ratio = std::max(ratio, h.a[k] / h.w[k]);
   }
   ratio += 2 * h.error * h.scale(0) / *std::min_element(h.w.begin(), h.w.end());
-  const DistanceExtreme byRatio{true, std::sqrt(std::max(0.0, farthest ? ratio : -ratio))};
-  if (!request.exact || (farthest ? byRatio.value <= request.enough : byRatio.value >= request.enough)) return byRatio;
+  if (!exact) return {true, std::sqrt(std::max(0.0, farthest ? ratio : -ratio))};
   SupportBound b = certifyMaximum(h, [&](const Eigen::Vector2d& x) {
     const SurfaceDerivatives d = patch.derivatives(x[0], x[1]);
     const Eigen::Vector3d r = d.point - c;
@@ -285,7 +255,7 @@ DistanceExtreme certifyDistanceExtreme(const RationalBezierPatch& patch, const E
     out.hess << d.du.squaredNorm() + r.dot(d.duu), uv, uv, d.dv.squaredNorm() + r.dot(d.dvv);
     out.hess *= 2 * sign;
     return out;
-  }, request.extreme);
+  });
   const double upper = b.proved ? std::min(b.upper, ratio) : ratio;
   // max of ±|S − c|²: the farthest distance is √upper; the nearest is √(−upper) (or 0 when the bound crosses 0).
   if (farthest) return {true, std::sqrt(std::max(0.0, upper))};

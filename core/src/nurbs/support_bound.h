@@ -13,8 +13,6 @@
 
 #include "unidist/nurbs.h"
 
-#include <limits>
-
 namespace unidist::nurbs {
 
 struct SupportBound {
@@ -30,18 +28,10 @@ struct DistanceExtreme {
   double value = 0;  // when proved: |S − c| <= value (farthest) or >= value (nearest) over the whole patch
 };
 
-/// How much work certifyDistanceExtreme may do.
-struct ExtremeRequest {
-  bool exact = true;                         ///< false: the coefficient bound only
-  const Eigen::Vector2d* extreme = nullptr;  ///< the caller's estimate of the extreme point (local parameters)
-  /// A coefficient bound already this good (farthest: <= enough, nearest: >= enough) is returned at once.
-  double enough = std::numeric_limits<double>::quiet_NaN();
-};
-
 /// The greatest (farthest = true) or least distance from c to the patch, both in one frame: exact to rounding
 /// where proved by concavity, else the bound of the Bernstein coefficients' ratios (second order in the patch
-/// size); not proved only for non-finite input or non-positive weights.
+/// size); without `exact` only the latter. Not proved only for non-finite input or non-positive weights.
 DistanceExtreme certifyDistanceExtreme(const RationalBezierPatch& patch, const Eigen::Vector3d& c, bool farthest,
-                                       const ExtremeRequest& request = {});
+                                       bool exact = true);
 
 }  // namespace unidist::nurbs

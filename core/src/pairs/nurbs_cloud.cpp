@@ -297,17 +297,16 @@ class SurfaceSearch {
   std::priority_queue<OpenPair, std::vector<OpenPair>, std::greater<OpenPair>> open_;
 };
 
-/// The answer from a point and its surface point (A's frame), the distance signed.
-DistanceResult answer(const PosedModel& a, const PointValue& v, double lower, double upper, int iterations,
-                      double tolerance) {
+/// The answer from the deepest point inside and its surface point (A's frame): minus its depth.
+DistanceResult insideAnswer(const PosedModel& a, const PointValue& v, double lower, double upper, int iterations,
+                            double tolerance) {
   DistanceResult r;
   r.method = "nurbs-cloud-bvh";
   r.iterations = iterations;
   r.pointA = a.toWorld(v.onSurface);
   r.pointB = a.toWorld(v.point);
   r.distance = v.signedDistance;
-  // The query's normal points from the surface toward an outside point and from an inside point toward the
-  // surface: the way the cloud leaves the solid either way.
+  // From an inside point the query's normal points toward the surface: the way the cloud leaves the solid.
   r.normal = a.dirToWorld(v.normal);
   r.upperBound = std::max(upper, r.distance);
   r.lowerBound = std::min(lower, r.distance);
@@ -329,8 +328,8 @@ DistanceResult nurbsCloud(const PosedModel& a, const PosedModel& b, const QueryC
     if (inside.deepestPoint() && -inside.deepestPoint()->signedDistance <= kUnsureSide * field.size())
       return genericPair(a, b, ctx);
     if (inside.deepestPoint()) {
-      DistanceResult r = answer(a, *inside.deepestPoint(), inside.lower(), inside.upper(), field.queries(),
-                                ctx.tolerance);
+      DistanceResult r = insideAnswer(a, *inside.deepestPoint(), inside.lower(), inside.upper(), field.queries(),
+                                      ctx.tolerance);
       if (!done) r.status = Status::Bounded;
       return r;
     }
@@ -347,9 +346,8 @@ DistanceResult nurbsCloud(const PosedModel& a, const PosedModel& b, const QueryC
   SurfaceSearch search(field, ctx.tolerance, budget);
   const bool done = search.run();
   const PointValue& v = *search.closest();
-  DistanceResult r = answer(a, v, std::max(0.0, search.lower()), std::abs(v.signedDistance),
-                            field.queries() + search.pops(), ctx.tolerance);
-  r.distance = std::abs(v.signedDistance);
+  DistanceResult r = separationFromPoints(a, v.onSurface, v.point, v.normal, std::max(0.0, search.lower()),
+                                          field.queries() + search.pops(), "nurbs-cloud-bvh", ctx.tolerance);
   if (!done) r.status = Status::Bounded;
   return r;
 }

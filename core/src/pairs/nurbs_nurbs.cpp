@@ -65,7 +65,7 @@ class PairSearch {
 
   Outcome run() {
     seed();
-    updatePlane();
+    updateSeparators();
     for (const auto& ra : a_.forest().roots)
       for (const auto& rb : b_.forest().roots) visit(ra.get(), rb.get());
     seedFromLowestPairs();
@@ -79,8 +79,8 @@ class PairSearch {
       open_.pop();
       ++popped;
       if (settledByRegion(*top.a, *top.b)) continue;
-      updatePlane();
-      if (settledByPlane(*top.a, *top.b, roundingMargin(*top.a, X_AB_ * top.b->ball.center, *top.b))) continue;
+      updateSeparators();
+      if (settledBySeparator(*top.a, *top.b, roundingMargin(*top.a, X_AB_ * top.b->ball.center, *top.b))) continue;
       certifyAround(*top.a, *top.b);
       if (settledByRegion(*top.a, *top.b)) continue;
       ++iterations_;
@@ -199,12 +199,15 @@ class PairSearch {
     // Both surfaces curve away from the plane at the best pair. Only then is it used: elsewhere (a saddle on
     // either side) it settles few pairs that the parent's direction does not, and costs a scan per visit.
     bool convexContact = false;
-    std::vector<std::pair<const Node*, double>> certifiedA, certifiedB;  // A's greatest, B's least height (±inf: not proved)
+    nurbs::NodeMemo certifiedA, certifiedB;  // A's greatest, B's least height (±inf: not proved)
   };
 
-  void updatePlane() {
+  /// The separators for the best pair, remade when it changes: the plane, used at a convex contact, else the
+  /// ball where one fits.
+  void updateSeparators() {
     if (plane_.forBest == best_.value || !std::isfinite(best_.value)) return;
     plane_ = {};
+    ball_.reset();
     plane_.forBest = best_.value;
     const Eigen::Vector3d gap = best_.pB - best_.pA;
     if (!(gap.norm() > 0)) return;
@@ -215,6 +218,10 @@ class PairSearch {
     plane_.convexContact =
         curvesAway(a_.patches()[static_cast<std::size_t>(best_.patchA)], best_.x.head<2>(), plane_.n) &&
         curvesAway(b_.patches()[static_cast<std::size_t>(best_.patchB)], best_.x.tail<2>(), -plane_.nB);
+    if (!plane_.convexContact)
+      ball_ = nurbs::SupportBall::fit(a_.patches()[static_cast<std::size_t>(best_.patchA)], best_.x.head<2>(),
+                                      b_.patches()[static_cast<std::size_t>(best_.patchB)], best_.x.tail<2>(), X_AB_,
+                                      best_.pA, best_.pB);
   }
 
   /// Does the surface at (s, t) curve away from the plane through it normal to n (on n's side), to first
@@ -226,16 +233,13 @@ class PairSearch {
     return uu <= flat && vv <= flat && (flat - uu) * (flat - vv) >= uv * uv;
   }
 
-  static double cached(std::vector<std::pair<const Node*, double>>& cache, const Node& node,
-                       const Eigen::Vector3d& direction) {
+  static double certifiedHeight(nurbs::NodeMemo& memo, const Node& node, const Eigen::Vector3d& direction) {
     // Normals every way: no direction sees the node curving away from it (and the cone test cannot say).
     if (node.normal.all) return std::numeric_limits<double>::infinity();
-    for (const auto& [key, value] : cache)
-      if (key == &node) return value;
-    const nurbs::SupportBound b = nurbs::certifySupport(node.net, direction);
-    const double value = b.proved ? b.upper : std::numeric_limits<double>::infinity();
-    cache.emplace_back(&node, value);
-    return value;
+    return memo.get(node, [&] {
+      const nurbs::SupportBound b = nurbs::certifySupport(node.net, direction);
+      return b.proved ? b.upper : std::numeric_limits<double>::infinity();
+    });
   }
 
   /// The plane's lower bound for the pair (without the rounding margin).
@@ -255,32 +259,19 @@ class PairSearch {
     }
     const double shiftB = n.dot(X_AB_.translation());  // B's heights are taken in B's frame
     if ((tryB ? shiftB + cornerB : minB) - (tryA ? cornerA : maxA) < needed) return minB - maxA;
-    if (tryA) maxA = std::min(maxA, cached(plane_.certifiedA, na, n));
-    if (tryB) minB = std::max(minB, shiftB - cached(plane_.certifiedB, nb, -plane_.nB));
+    if (tryA) maxA = std::min(maxA, certifiedHeight(plane_.certifiedA, na, n));
+    if (tryB) minB = std::max(minB, shiftB - certifiedHeight(plane_.certifiedB, nb, -plane_.nB));
     return minB - maxA;
   }
 
-  /// margin: the rounding allowance of visit().
-  bool settledByPlane(const Node& na, const Node& nb, double margin) {
-    if (!plane_.convexContact) return settledByBall(na, nb, margin);
-    const double lower = planeGap(na, nb) - margin;
-    if (lower < best_.value - 0.5 * tolerance_) return false;
-    lowerOfPruned_ = std::min(lowerOfPruned_, lower);
-    return true;
-  }
-
-  /// Where the plane cannot be used (a saddle or a concave side at the best pair), a ball curved between the two
-  /// surfaces (support_ball.h), fitted when the best pair changes.
-  bool settledByBall(const Node& na, const Node& nb, double margin) {
-    if (ballForBest_ != best_.value) {
-      ballForBest_ = best_.value;
-      ball_ = nurbs::SupportBall::fit(a_.patches()[static_cast<std::size_t>(best_.patchA)], best_.x.head<2>(),
-                                      b_.patches()[static_cast<std::size_t>(best_.patchB)], best_.x.tail<2>(), X_AB_,
-                                      best_.pA, best_.pB);
-    }
-    if (!ball_) return false;
+  /// Settled by the best pair's separator (margin: the rounding allowance of visit()): the plane at a convex
+  /// contact, else the ball (support_ball.h) where one fits.
+  bool settledBySeparator(const Node& na, const Node& nb, double margin) {
     const double needed = best_.value - 0.5 * tolerance_;
-    const double lower = ball_->gap(na, nb, needed + margin) - margin;
+    double lower;
+    if (plane_.convexContact) lower = planeGap(na, nb) - margin;
+    else if (ball_) lower = ball_->gap(na, nb, needed + margin) - margin;
+    else return false;
     if (lower < needed) return false;
     lowerOfPruned_ = std::min(lowerOfPruned_, lower);
     return true;
@@ -422,7 +413,7 @@ class PairSearch {
       lowerOfPruned_ = std::min(lowerOfPruned_, byBalls);
       return;
     }
-    if (settledByRegion(*na, *nb) || settledByPlane(*na, *nb, margin)) return;
+    if (settledByRegion(*na, *nb) || settledBySeparator(*na, *nb, margin)) return;
     // The hulls' gap along one direction is a proved bound too: along the parent pair's closest-point direction
     // (or between the balls' centres) it often prunes the pair without running GJK. (Along the best pair's
     // direction from the control points alone: more instructions than the GJK runs it saves; the support plane
@@ -476,7 +467,6 @@ class PairSearch {
   std::vector<NewtonEnd> ends_;
   std::vector<ConvexRegion> regions_;
   SupportPlane plane_;
-  double ballForBest_ = std::numeric_limits<double>::quiet_NaN();
   std::optional<nurbs::SupportBall> ball_;
   std::vector<std::unique_ptr<Node>> arena_;
   std::priority_queue<OpenPair, std::vector<OpenPair>, std::greater<OpenPair>> open_;

@@ -127,25 +127,17 @@ std::string Box::describe() const {
 namespace unidist {
 
 const TriangleMesh& Box::asMesh() const {
-  std::call_once(lazyMesh_.once, [this] {
+  return mesh_.get([this] {
     std::vector<Eigen::Vector3d> v;
     for (int i = 0; i < 8; ++i) v.emplace_back(i & 1 ? h_.x() : -h_.x(), i & 2 ? h_.y() : -h_.y(), i & 4 ? h_.z() : -h_.z());
     std::vector<TriangleMesh::Triangle> t = {{0, 2, 3}, {0, 3, 1}, {4, 5, 7}, {4, 7, 6}, {0, 1, 5}, {0, 5, 4},
                                              {2, 6, 7}, {2, 7, 3}, {0, 4, 6}, {0, 6, 2}, {1, 3, 7}, {1, 7, 5}};
-    lazyMesh_.mesh = std::make_shared<const TriangleMesh>(std::move(v), std::move(t));
-    lazyMesh_.ready.store(lazyMesh_.mesh.get(), std::memory_order_release);
+    return std::make_shared<const TriangleMesh>(std::move(v), std::move(t));
   });
-  return *lazyMesh_.mesh;
 }
 
-std::vector<StructureReport> Box::structures() const {
-  const TriangleMesh* m = lazyMesh_.ready.load(std::memory_order_acquire);
-  return {{"contact-mesh", m != nullptr, m ? m->memoryBytes() : 0}};
-}
+std::vector<StructureReport> Box::structures() const { return {mesh_.report("contact-mesh")}; }
 
-std::size_t Box::memoryBytes() const {
-  const TriangleMesh* m = lazyMesh_.ready.load(std::memory_order_acquire);
-  return sizeof(*this) + (m ? m->memoryBytes() : 0);
-}
+std::size_t Box::memoryBytes() const { return sizeof(*this) + mesh_.report("").bytes; }
 
 }  // namespace unidist

@@ -36,23 +36,15 @@ NurbsSurface torusSurface(double R, double r) {
 }  // namespace
 
 const NurbsModel& Torus::asNurbs() const {
-  std::call_once(lazyNurbs_.once, [this] {
+  return nurbs_.get([this] {
     std::vector<NurbsSurface> surfaces;
     surfaces.push_back(torusSurface(R_, r_));
-    lazyNurbs_.model = std::make_shared<const NurbsModel>(std::move(surfaces), true);
-    lazyNurbs_.ready.store(lazyNurbs_.model.get(), std::memory_order_release);
+    return std::make_shared<const NurbsModel>(std::move(surfaces), true);
   });
-  return *lazyNurbs_.model;
 }
 
-std::vector<StructureReport> Torus::structures() const {
-  const NurbsModel* m = lazyNurbs_.ready.load(std::memory_order_acquire);
-  return {{"exact-nurbs", m != nullptr, m ? m->memoryBytes() : 0}};
-}
+std::vector<StructureReport> Torus::structures() const { return {nurbs_.report("exact-nurbs")}; }
 
-std::size_t Torus::memoryBytes() const {
-  const NurbsModel* m = lazyNurbs_.ready.load(std::memory_order_acquire);
-  return sizeof(*this) + (m ? m->memoryBytes() : 0);
-}
+std::size_t Torus::memoryBytes() const { return sizeof(*this) + nurbs_.report("").bytes; }
 
 }  // namespace unidist
