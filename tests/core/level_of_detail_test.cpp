@@ -88,7 +88,7 @@ TEST(LevelOfDetail, NurbsTessellationDeviationHoldsBothWays) {
 TEST(LevelOfDetail, LevelsAreBuiltOnceAndShared) {
   const NurbsModel exact({torus()}, true);
   EXPECT_EQ(exact.atDetail(0).model, &exact);
-  ASSERT_EQ(exact.structures().size(), 2u);
+  ASSERT_EQ(exact.structures().size(), 3u);  // patch tree, levels, point query cells
   EXPECT_FALSE(exact.structures()[1].built);  // no level asked yet
   std::vector<const Model*> seen(4);
   std::vector<std::thread> threads;
@@ -98,7 +98,7 @@ TEST(LevelOfDetail, LevelsAreBuiltOnceAndShared) {
   for (const Model* m : seen) EXPECT_EQ(m, seen[0]);
   EXPECT_EQ(exact.atDetail(0.02).model, seen[0]);
   const auto structures = exact.structures();
-  ASSERT_EQ(structures.size(), 2u);
+  ASSERT_EQ(structures.size(), 3u);
   EXPECT_EQ(structures[1].name, "level-of-detail");
   EXPECT_TRUE(structures[1].built);
   EXPECT_GT(structures[1].bytes, 0u);

@@ -2,6 +2,7 @@
 // dense-sampling + Newton oracle (bicubic wavy patch).
 #include "adapters/error_of.h"
 #include "nurbs/gradient_sign.h"
+#include "nurbs/point_convexity.h"
 #include "nurbs/patch_tree.h"
 #include "nurbs/start_set.h"
 #include "nurbs_fixtures.h"
@@ -194,6 +195,14 @@ TEST(NurbsTree, MemoryReportCountsNodesStartSetAndForms) {
       std::size_t doubles = n.gradient->pu.capacity() + n.gradient->pv.capacity();
       for (int c = 0; c < 3; ++c) doubles += n.gradient->qu[c].capacity() + n.gradient->qv[c].capacity();
       forms += sizeof(nurbs::GradientForm) + doubles * sizeof(double);
+    }
+    if (n.curvature) {  // the convexity proof's Hessian form (point_convexity.h)
+      std::size_t doubles = 0;
+      for (std::size_t k = 0; k < 3; ++k) {
+        doubles += n.curvature->p[k].capacity();
+        for (const auto& x : n.curvature->q[k]) doubles += x.capacity();
+      }
+      forms += sizeof(nurbs::CurvatureForm) + doubles * sizeof(double);
     }
     for (const auto& c : n.cached)
       if (c) visit(*c);

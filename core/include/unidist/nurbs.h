@@ -59,6 +59,7 @@ constexpr int kNurbsSearchBudget = 20000;
 namespace nurbs {
 struct PatchForest;
 struct PatchHit;
+class PointCells;
 }
 namespace lod {
 class StandInCache;
@@ -135,6 +136,16 @@ class NurbsModel final : public Model {
   NurbsModel(const NurbsModel&) = delete;
   NurbsModel& operator=(const NurbsModel&) = delete;
 
+  /// Prepares the point query for a model queried many times (a simulation's or a haptic loop's): the space
+  /// around the model is cut into cells, each made by the first query landing in it and kept, in which a query
+  /// is a short Newton run with a convexity proof instead of a search (docs/nurbs.md, "Prepared point
+  /// queries"). About 3-5x faster once a region's cells exist (1.6 us on the exact torus); a query that makes
+  /// a cell pays ~10-50 us, and the first queries of a model up to a few ms while the cells' node forms are
+  /// made. Answers stay a function of the query point alone (a cell is made from its centre only), proved to
+  /// the same tolerance. Call before sharing the model between threads; off by default.
+  void preparePointQueries() { prepared_ = true; }
+  bool pointQueriesPrepared() const { return prepared_; }
+
   ModelType type() const override { return ModelType::Nurbs; }
   SurfacePoint closestPoint(const Eigen::Vector3d& q_M) const override;
   Aabb localBounds() const override { return bounds_; }
@@ -193,6 +204,8 @@ class NurbsModel final : public Model {
   Aabb bounds_;
   std::unique_ptr<nurbs::PatchForest> forest_;
   std::unique_ptr<lod::StandInCache> standIns_;
+  std::unique_ptr<nurbs::PointCells> cells_;  // the point query's cells, made as queries reach them
+  bool prepared_ = false;                      // whether the point query uses them
   std::vector<std::array<bool, 2>> periodic_;  // per surface, u and v
   // Solids: per patch, the other patches through its corners (s + 2t) and along its edges (4 + e: s = 0, s = 1,
   // t = 0, t = 1; at the edge's midpoint, kept only where one patch's whole edge matches it).

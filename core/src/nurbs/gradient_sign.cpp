@@ -258,13 +258,15 @@ bool boundedSizes(const GradientForm& F, double r) { return F.sizeP + std::sqrt(
 bool interior(const PatchNode& n) { return n.s0 > 0 && n.s1 < 1 && n.t0 > 0 && n.t1 < 1; }
 
 bool pointHoldsNoMinimum(const PatchNode& n, const PatchForest& forest, const Eigen::Vector3d& q, GradientScratch& g,
-                         double negligible) {
+                         double negligible, double reach) {
   const GradientForm& F = gradientForm(n, forest);
   const Eigen::Vector3d r = q - F.centre;
-  if (!boundedSizes(F, r.norm())) return false;
-  // r itself is rounded by an ulp of the larger of q and the centre.
-  const double slack = 2 * kEps * (q.cwiseAbs().maxCoeff() + F.centre.cwiseAbs().maxCoeff()) * std::sqrt(3.0);
-  const double margin = F.errP + r.norm() * F.errQ + slack * F.sizeQ + 8 * kEps * (F.sizeP + r.norm() * F.sizeQ);
+  if (!boundedSizes(F, r.norm() + reach)) return false;
+  // r itself is rounded by an ulp of the larger of q and the centre; a point within `reach` of q moves each
+  // coefficient p_k − r·q_k by at most reach |q_k|.
+  const double slack = 2 * kEps * (q.cwiseAbs().maxCoeff() + F.centre.cwiseAbs().maxCoeff()) * std::sqrt(3.0) + reach;
+  const double margin = F.errP + (r.norm() + reach) * F.errQ + slack * F.sizeQ * (1 + 1e-12) +
+                        8 * kEps * (F.sizeP + (r.norm() + reach) * F.sizeQ);
   int signs[2];
   signs[0] = combine(F.pu, r, F.qu, margin, g.u);
   if (signs[0] != 0 && interior(n)) return true;  // ∂/∂s never zero (the usual proof: v is not needed)

@@ -49,9 +49,10 @@ struct GradientScratch {
 };
 
 /// Proved: no point of the node is a local minimum of |S − q| over the node's patch, except patch corners and
-/// points of a patch edge collapsed to within `negligible` (a pole: there every point is within it of a corner).
+/// points of a patch edge collapsed to within `negligible` (a pole: there every point is within it of a corner);
+/// with `reach`, for every q within that distance of the given one.
 bool pointHoldsNoMinimum(const PatchNode& n, const PatchForest& forest, const Eigen::Vector3d& q, GradientScratch& g,
-                         double negligible);
+                         double negligible, double reach = 0);
 /// The same for −d·S (d a unit vector).
 bool supportHoldsNoMinimum(const PatchNode& n, const PatchForest& forest, const Eigen::Vector3d& d, GradientScratch& g,
                            double negligible);

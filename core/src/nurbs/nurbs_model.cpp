@@ -5,6 +5,7 @@
 #include "nurbs/objectives.h"
 #include "nurbs/patch_search.h"
 #include "nurbs/patch_tree.h"
+#include "nurbs/point_cells.h"
 
 #include <algorithm>
 #include <array>
@@ -22,6 +23,10 @@ constexpr double kRelativeTolerance = 1e-13;
 constexpr double kRelativeClosure = 1e-9;
 // Unit normals of faces meeting at a point closer than this make no crease (a seam; a pole's nudged normals).
 constexpr double kCreaseAngle = 1e-6;
+// The point query's cells (point_cells.h): the grid reaches this fraction of the model size beyond its box, in
+// cells this fraction of it across.
+constexpr double kCellMargin = 0.5;
+constexpr double kCellsAcross = 40;
 
 std::string vec(const Eigen::Vector3d& v) {
   char buf[96];
@@ -60,6 +65,10 @@ NurbsModel::NurbsModel(std::vector<NurbsSurface> surfaces, bool solid) : surface
     findIncidents();
   }
   for (const NurbsSurface& s : surfaces_) periodic_.push_back(findPeriodic(s));
+  // Query cells over the model's box and half its size around it, a sixteenth of its size across.
+  const double size = bounds_.diagonal();
+  const Eigen::Vector3d margin = Eigen::Vector3d::Constant(kCellMargin * size);
+  cells_ = std::make_unique<nurbs::PointCells>(bounds_.min - margin, bounds_.max + margin, size / kCellsAcross);
 }
 
 NurbsModel::~NurbsModel() = default;
@@ -192,8 +201,10 @@ Eigen::Vector3d NurbsModel::normalAt(const nurbs::PatchHit& h) const {
 SurfacePoint NurbsModel::closestPoint(const Eigen::Vector3d& q_M) const {
   if (!q_M.allFinite()) throw InputError("NURBS point query: the query point is not finite");
   const double size = bounds_.diagonal();
-  const nurbs::SearchResult r =
-      nurbs::minimise(*forest_, patches_, nurbs::PointObjective(q_M, size), kRelativeTolerance * size, 0);
+  const nurbs::PointObjective objective(q_M, size);
+  nurbs::SearchResult r;
+  if (!prepared_ || !cells_->closest(*forest_, patches_, objective, q_M, size, kRelativeTolerance * size, r))
+    r = nurbs::minimise(*forest_, patches_, objective, kRelativeTolerance * size, 0);
   const nurbs::PatchHit& h = r.best;
   const RationalBezierPatch& P = patches_[static_cast<std::size_t>(h.patch)];
   SurfacePoint out;
@@ -431,7 +442,7 @@ std::size_t NurbsModel::patchTreeBytes() const {
 }
 
 std::vector<StructureReport> NurbsModel::structures() const {
-  return {{"patch-tree", true, patchTreeBytes()}, standIns_->report()};
+  return {{"patch-tree", true, patchTreeBytes()}, standIns_->report(), {"point-cells", cells_->built(), cells_->bytes()}};
 }
 
 StandIn NurbsModel::atDetail(double maxDeviation) const {
@@ -441,7 +452,7 @@ StandIn NurbsModel::atDetail(double maxDeviation) const {
 }
 
 std::size_t NurbsModel::memoryBytes() const {
-  std::size_t bytes = sizeof(*this) + patchTreeBytes() + standIns_->report().bytes;
+  std::size_t bytes = sizeof(*this) + patchTreeBytes() + cells_->bytes() + standIns_->report().bytes;
   for (const NurbsSurface& s : surfaces_)
     bytes += sizeof(s) + (s.knotsU().size() + s.knotsV().size()) * sizeof(double) +
              static_cast<std::size_t>(s.countU() * s.countV()) * sizeof(Eigen::Vector4d);

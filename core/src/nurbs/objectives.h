@@ -4,6 +4,7 @@
 #include "nurbs/bernstein_bound.h"
 #include "nurbs/gradient_sign.h"
 #include "nurbs/patch_search.h"
+#include "nurbs/point_convexity.h"
 
 #include <algorithm>
 #include <limits>
@@ -42,6 +43,19 @@ class PointObjective final : public Objective {
     g << r.dot(d.du), r.dot(d.dv);
     H << d.du.dot(d.du) + r.dot(d.duu), d.du.dot(d.dv) + r.dot(d.duv), d.du.dot(d.dv) + r.dot(d.duv),
         d.dv.dot(d.dv) + r.dot(d.dvv);
+  }
+  // g_a = (S − q)·S_a: S and S_a are evaluated to a few ulps of |S| and |S_a| + |S| (the quotient rule), q − S
+  // to an ulp of |q| + |S|.
+  double gradientError(const SurfaceDerivatives& d) const override {
+    const double r = (d.point - q_).norm(), scale = d.point.norm() + q_.norm();
+    const double speed = std::max(d.du.norm(), d.dv.norm());
+    return 256 * std::numeric_limits<double>::epsilon() * (scale * speed + r * (speed + d.point.norm()));
+  }
+  double curvature(const PatchNode& n, const PatchForest& forest) const override {
+    return convexAtMiddle(n, q_) ? leastCurvature(curvatureForm(n, forest), q_) : 0;
+  }
+  double basinBound(const PatchNode& n, const PatchHit& h, double curvature) const override {
+    return convexDistanceBound(n, q_, h, curvature);
   }
   // Near the surface the distance is convex over a small piece whatever q, so pieces of a fixed small size
   // are polished too (otherwise a query on the surface would subdivide down to the tolerance).

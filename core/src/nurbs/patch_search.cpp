@@ -44,10 +44,21 @@ void Objective::startBounds(const StartSet& start, double below, double* out) co
   }
 }
 
-PatchHit polish(const RationalBezierPatch& patch, int index, const Objective& f, double s, double t) {
+PatchHit pointAt(const RationalBezierPatch& patch, int index, const Objective& f, double s, double t) {
+  const SurfaceDerivatives d = patch.derivatives(s, t);
+  PatchHit hit{index, s, t, f.value(d.point), d.point};
+  if (!unitNormal(d, hit.normal)) hit.normal.setZero();
+  Eigen::Matrix2d H;
+  f.derivatives(d, hit.gradient, H);
+  hit.gradientError = f.gradientError(d);
+  return hit;
+}
+
+PatchHit polish(const RationalBezierPatch& patch, int index, const Objective& f, double s, double t, const ParamBox& box) {
   PatchHit hit;
   hit.patch = index;
-  Eigen::Vector2d x(s, t);
+  const Eigen::Vector2d lo(box.s0, box.t0), hi(box.s1, box.t1);
+  Eigen::Vector2d x = Eigen::Vector2d(s, t).cwiseMax(lo).cwiseMin(hi);
   SurfaceDerivatives d = patch.derivatives(x[0], x[1]);
   double value = f.value(d.point);
   for (int step = 0; step < kNewtonSteps; ++step) {
@@ -55,8 +66,8 @@ PatchHit polish(const RationalBezierPatch& patch, int index, const Objective& f,
     Eigen::Matrix2d H;
     f.derivatives(d, g, H);
     // Active set: a variable at its bound whose descent direction leaves the box stays fixed.
-    const bool fixU = (x[0] <= 0 && g[0] > 0) || (x[0] >= 1 && g[0] < 0);
-    const bool fixV = (x[1] <= 0 && g[1] > 0) || (x[1] >= 1 && g[1] < 0);
+    const bool fixU = (x[0] <= box.s0 && g[0] > 0) || (x[0] >= box.s1 && g[0] < 0);
+    const bool fixV = (x[1] <= box.t0 && g[1] > 0) || (x[1] >= box.t1 && g[1] < 0);
     if (fixU && fixV) break;
     Eigen::Matrix2d metric;  // first fundamental form: positive definite on a regular surface
     metric << d.du.dot(d.du), d.du.dot(d.dv), d.du.dot(d.dv), d.dv.dot(d.dv);
@@ -90,7 +101,7 @@ PatchHit polish(const RationalBezierPatch& patch, int index, const Objective& f,
     // A short step that does not decrease the objective is at rounding level: converged, no halving.
     const int halvings = delta.cwiseAbs().maxCoeff() < 1e-6 ? 1 : 30;
     for (int h = 0; h < halvings && !accepted; ++h, lambda *= 0.5) {
-      const Eigen::Vector2d trial = (x + lambda * delta).cwiseMax(0.0).cwiseMin(1.0);
+      const Eigen::Vector2d trial = (x + lambda * delta).cwiseMax(lo).cwiseMin(hi);
       if (trial == x) break;
       const SurfaceDerivatives dt = patch.derivatives(trial[0], trial[1]);
       const double vt = f.value(dt.point);
@@ -111,6 +122,10 @@ PatchHit polish(const RationalBezierPatch& patch, int index, const Objective& f,
   hit.point = d.point;
   // The normal comes with the last evaluation (the caller needs it for the sign); at a pole it is left out.
   if (!unitNormal(d, hit.normal)) hit.normal.setZero();
+  // So does the gradient there (basinBound's tangent plane).
+  Eigen::Matrix2d H;
+  f.derivatives(d, hit.gradient, H);
+  hit.gradientError = f.gradientError(d);
   return hit;
 }
 
@@ -213,12 +228,27 @@ SearchResult minimise(const PatchForest& forest, const std::vector<RationalBezie
         return std::any_of(n.corners.begin(), n.corners.end(),
                            [&](const Eigen::Vector3d& c) { return (c - m.point).norm() <= tolerance; });
       };
-      if (flat && std::any_of(polished.begin(), polished.end(), inside)) continue;
+      // A piece over which the objective is proved convex holds no other minimum: the premise is then a proof.
+      const auto closeOn = [&](const PatchHit& h) {
+        const bool proved = n.depth <= kCachedDepth && h.patch == n.patch && h.s >= n.s0 && h.s <= n.s1 &&
+                            h.t >= n.t0 && h.t <= n.t1 && f.basinBound(n, h, f.curvature(n, forest)) >= out.best.value - tolerance;
+        ++(proved ? out.convex : out.premised);
+      };
+      if (flat) {
+        const auto end = std::find_if(polished.begin(), polished.end(), inside);
+        if (end != polished.end()) {
+          closeOn(*end);
+          continue;
+        }
+      }
       if (flat && f.provesNoMinimum(n, forest, 0.5 * tolerance)) continue;
       const RationalBezierPatch& patch = patches[static_cast<std::size_t>(n.patch)];
       polished.push_back(polish(patch, n.patch, f, 0.5 * (n.s0 + n.s1), 0.5 * (n.t0 + n.t1)));
       offer(polished.back());
-      if (tiny || inside(polished.back())) continue;
+      if (tiny || inside(polished.back())) {
+        closeOn(polished.back());
+        continue;
+      }
       // The run left for another basin and the piece may hold one of its own (the wavy patch missed 2 of
       // 10,000 points by 3.1e-3 and 4.7e-6 when such pieces were closed): its quarters are searched, unless
       // the Bernstein bound proves it cannot improve by the tolerance. Where minima are not isolated (a

@@ -15,6 +15,8 @@
 
 namespace unidist::nurbs {
 
+struct PatchHit;
+
 /// What is minimised.
 class Objective {
  public:
@@ -31,12 +33,28 @@ class Objective {
     (void)enough;
     return lowerBound(n);
   }
+  /// A proved lower bound on the least curvature of the objective's smooth form over the node (its local
+  /// parameters): positive where it is proved convex there, else zero.
+  virtual double curvature(const PatchNode& n, const PatchForest& forest) const {
+    (void)n, (void)forest;
+    return 0;
+  }
+  /// Proved, given curvature(n) > 0: value >= this on the node, from a point h of it where a Newton run ended.
+  virtual double basinBound(const PatchNode& n, const PatchHit& h, double curvature) const {
+    (void)n, (void)h, (void)curvature;
+    return -std::numeric_limits<double>::infinity();
+  }
   /// A tighter proved bound, dearer: asked only of a node the search would otherwise split.
   virtual double tightLowerBound(const PatchNode& n) const { return lowerBound(n); }
   /// Directions an interior critical point's normal must be parallel to (for the point query: q − S).
   virtual Cone criticalDirections(const BoundingSphere& b) const = 0;
   /// Gradient and Hessian (with respect to the local parameters) of a smooth function with the same minimisers.
   virtual void derivatives(const SurfaceDerivatives& d, Eigen::Vector2d& gradient, Eigen::Matrix2d& hessian) const = 0;
+  /// A bound on the rounding error of each component of derivatives()'s gradient (infinite: none known).
+  virtual double gradientError(const SurfaceDerivatives& d) const {
+    (void)d;
+    return std::numeric_limits<double>::infinity();
+  }
   /// Size that makes a node "small" (leaf when its radius is below a fraction of it).
   virtual double leafScale(const BoundingSphere& b) const = 0;
   /// Proved: no point of the node is a local minimum over its patch, patch corners and points within
@@ -65,6 +83,10 @@ struct PatchHit {
   Eigen::Vector3d point = Eigen::Vector3d::Zero();
   /// Unit Su x Sv there where a Newton run ended and the surface is regular (zero elsewhere: not computed).
   Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+  /// Where a Newton run ended: the smooth function's gradient in the patch's local parameters, each component
+  /// known to within gradientError (infinite elsewhere: not computed).
+  Eigen::Vector2d gradient = Eigen::Vector2d::Zero();
+  double gradientError = std::numeric_limits<double>::infinity();
 };
 
 struct SearchResult {
@@ -75,6 +97,10 @@ struct SearchResult {
   /// The objective's minimum is at least this: best.value − tolerance, or when the budget ran out the lowest
   /// bound still open (a small flat leaf a Newton run ends in is taken to hold one minimum: see minimise()).
   double lowerBound = -std::numeric_limits<double>::infinity();
+  /// Pieces closed by basinBound (a proof: the objective convex over them).
+  int convex = 0;
+  /// Small flat pieces closed on a Newton run that ended inside them, taken to hold one minimum (unproved).
+  int premised = 0;
   /// Pieces closed on a Newton run without a proof that they hold no other minimum (see minimise()).
   int unproved = 0;
 };
@@ -84,7 +110,16 @@ struct SearchResult {
 SearchResult minimise(const PatchForest& forest, const std::vector<RationalBezierPatch>& patches, const Objective& f,
                       double tolerance, double tieTolerance, int skip = -1, int only = -1);
 
-/// Box-constrained Newton on patch from (s, t); returns the best point reached.
-PatchHit polish(const RationalBezierPatch& patch, int index, const Objective& f, double s, double t);
+/// A box of a patch's local parameters.
+struct ParamBox {
+  double s0 = 0, s1 = 1, t0 = 0, t1 = 1;
+};
+
+/// The patch's point at (s, t) with the objective's value and gradient there.
+PatchHit pointAt(const RationalBezierPatch& patch, int index, const Objective& f, double s, double t);
+
+/// Box-constrained Newton on patch from (s, t) (clamped into the box); returns the best point reached.
+PatchHit polish(const RationalBezierPatch& patch, int index, const Objective& f, double s, double t,
+                const ParamBox& box = {});
 
 }  // namespace unidist::nurbs

@@ -15,6 +15,7 @@
 
 namespace unidist::nurbs {
 
+struct CurvatureForm;
 struct GradientForm;
 struct StartSet;
 
@@ -78,6 +79,8 @@ struct PatchNode {
   mutable std::array<std::unique_ptr<PatchNode>, 4> cached;
   mutable std::once_flag gradientOnce;  // the gradient's Bernstein form, made when first asked (gradient_sign.h)
   mutable std::shared_ptr<const GradientForm> gradient;
+  mutable std::once_flag curvatureOnce;  // its Hessian's q-independent enclosures, likewise (point_convexity.h)
+  mutable std::shared_ptr<const CurvatureForm> curvature;
 };
 
 constexpr int kCachedDepth = 7;

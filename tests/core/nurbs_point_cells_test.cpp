@@ -1,0 +1,239 @@
+// The NURBS point query's convexity proof (point_convexity.h) and query cells (point_cells.h): every bound
+// checked against dense sampling of the exact surface, every cell answer against the full search.
+#include "core/nurbs_fixtures.h"
+#include "nurbs/objectives.h"
+#include "nurbs/patch_search.h"
+#include "nurbs/point_cells.h"
+#include "nurbs/point_convexity.h"
+#include "unidist/nurbs.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Eigenvalues>
+
+#include <random>
+#include <thread>
+
+namespace {
+
+using Vec = Eigen::Vector3d;
+using namespace unidist::nurbs;
+
+struct Case {
+  const char* name;
+  unidist::NurbsSurface surface;
+  bool solid;
+  Vec extent;  // queries uniform in [−extent, extent]
+};
+
+std::vector<Case> cases(double scale = 1) {
+  return {{"torus", nurbs_fixtures::torusSurface(1, 0.25, scale), true, scale * Vec(1.6, 1.6, 0.6)},
+          {"sphere", nurbs_fixtures::sphereSurface(scale), true, scale * Vec(2, 2, 2)},
+          {"wavy", nurbs_fixtures::wavySurface(), false, Vec(1.6, 1.6, 0.64)}};
+}
+
+std::vector<Vec> randomPoints(const Vec& extent, int count, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> U(-1, 1);
+  std::vector<Vec> out;
+  for (int k = 0; k < count; ++k) out.push_back(extent.cwiseProduct(Vec(U(rng), U(rng), U(rng))));
+  return out;
+}
+
+// The nodes down to `depth` of every patch.
+std::vector<const PatchNode*> nodesTo(const PatchForest& forest, int depth) {
+  std::vector<const PatchNode*> out, stack;
+  std::vector<std::unique_ptr<PatchNode>> arena;
+  for (const auto& r : forest.roots) stack.push_back(r.get());
+  while (!stack.empty()) {
+    const PatchNode* n = stack.back();
+    stack.pop_back();
+    out.push_back(n);
+    if (n->depth < depth)
+      for (const PatchNode* c : forest.children(*n, arena)) stack.push_back(c);
+  }
+  return out;
+}
+
+// The Hessian of ½|S − q|² in the node's own parameters at (u, v) ∈ [0,1]².
+double sampledLeastEigenvalue(const PatchNode& n, const Vec& q, double u, double v) {
+  const unidist::SurfaceDerivatives d = n.net.derivatives(u, v);
+  const Vec r = d.point - q;
+  Eigen::Matrix2d H;
+  H << d.du.dot(d.du) + r.dot(d.duu), d.du.dot(d.dv) + r.dot(d.duv), d.du.dot(d.dv) + r.dot(d.duv),
+      d.dv.dot(d.dv) + r.dot(d.dvv);
+  return Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(H).eigenvalues()[0];
+}
+
+TEST(NurbsPointConvexity, LeastCurvatureIsBelowTheSampledHessianEverywhere) {
+  for (const Case& c : cases()) {
+    const unidist::NurbsModel model({c.surface}, c.solid);
+    const std::vector<Vec> queries = randomPoints(c.extent, 40, 3);
+    int proved = 0;
+    for (const PatchNode* n : nodesTo(model.forest(), 3)) {
+      const CurvatureForm& form = curvatureForm(*n, model.forest());
+      for (const Vec& q : queries) {
+        const double reach = 0.05;
+        const double mu = leastCurvature(form, q, reach);
+        if (!(mu > 0)) continue;
+        ++proved;
+        // At q and at points within reach of it, on a grid over the node.
+        for (const Vec& x : {q, Vec(q + Vec(reach, 0, 0)), Vec(q - Vec(0, 0.7 * reach, 0.7 * reach))})
+          for (int i = 0; i <= 6; ++i)
+            for (int j = 0; j <= 6; ++j)
+              ASSERT_GE(sampledLeastEigenvalue(*n, x, i / 6.0, j / 6.0), mu * (1 - 1e-9))
+                  << c.name << " node depth " << n->depth << " patch " << n->patch;
+      }
+    }
+    EXPECT_GT(proved, 100) << c.name;  // the test proves something
+  }
+}
+
+TEST(NurbsPointConvexity, BasinBoundIsBelowEveryPointOfTheNode) {
+  for (const Case& c : cases()) {
+    const unidist::NurbsModel model({c.surface}, c.solid);
+    const double size = model.localBounds().diagonal();
+    int proved = 0, tight = 0;
+    for (const Vec& q : randomPoints(c.extent, 60, 5)) {
+      const PointObjective f(q, size);
+      for (const PatchNode* n : nodesTo(model.forest(), 2)) {
+        const double mu = f.curvature(*n, model.forest());
+        if (!(mu > 0)) continue;
+        const unidist::RationalBezierPatch& patch = model.patches()[static_cast<std::size_t>(n->patch)];
+        // From the node's middle (not a minimum: the bound must hold all the same) and from a run's end.
+        const PatchHit middle = pointAt(patch, n->patch, f, 0.5 * (n->s0 + n->s1), 0.5 * (n->t0 + n->t1));
+        const PatchHit run = polish(patch, n->patch, f, n->s0, n->t1, ParamBox{n->s0, n->s1, n->t0, n->t1});
+        double least = std::numeric_limits<double>::infinity();
+        for (int i = 0; i <= 24; ++i)
+          for (int j = 0; j <= 24; ++j)
+            least = std::min(least, (n->net.evaluate(i / 24.0, j / 24.0) - q).norm());
+        for (const PatchHit& h : {middle, run}) EXPECT_LE(f.basinBound(*n, h, mu), least + 1e-15) << c.name;
+        // A run's end is the node's least value: its bound is within the tolerance of it, unless the run
+        // stopped short of the rounding limit where the curvature is weak (then the search goes on).
+        tight += f.basinBound(*n, run, mu) >= run.value - 1e-13 * size;
+        EXPECT_LE(run.value, least + 1e-12) << c.name;
+        ++proved;
+      }
+    }
+    EXPECT_GT(proved, 50) << c.name;
+    EXPECT_GE(tight, 0.95 * proved) << c.name;
+  }
+}
+
+// The search closes the leaf its Newton run ends in on the convexity proof, not the one-minimum premise,
+// wherever the distance is convex there: on the torus nearly everywhere.
+TEST(NurbsPointConvexity, SearchProvesThePremiseOnTheTorus) {
+  const unidist::NurbsModel model({nurbs_fixtures::torusSurface()}, true);
+  const double size = model.localBounds().diagonal();
+  int premised = 0, proved = 0;
+  for (const Vec& q : randomPoints(Vec(1.6, 1.6, 0.6), 1000, 17)) {
+    const SearchResult r = minimise(model.forest(), model.patches(), PointObjective(q, size), 1e-13 * size, 0);
+    premised += r.premised;
+    proved += r.convex;
+  }
+  EXPECT_LE(premised, 5);
+  EXPECT_GE(proved, 1000);
+}
+
+// Cells answer most repeated queries, each as the full search does.
+void expectCellsMatchSearch(const Case& c, double tolerance) {
+  const unidist::NurbsModel model({c.surface}, c.solid);
+  const double size = model.localBounds().diagonal();
+  const Vec margin = Vec::Constant(0.5 * size);
+  const PointCells cells(model.localBounds().min - margin, model.localBounds().max + margin, size / 32);
+  const std::vector<Vec> queries = randomPoints(c.extent, 3000, 7);
+  int answered = 0;
+  constexpr int kPasses = 2;  // a cell is built by its first query
+  for (int pass = 0; pass < kPasses; ++pass)
+    for (const Vec& q : queries) {
+      const PointObjective f(q, size);
+      SearchResult r;
+      if (!cells.closest(model.forest(), model.patches(), f, q, size, tolerance, r)) continue;
+      answered += pass == kPasses - 1;
+      const SearchResult full = minimise(model.forest(), model.patches(), f, tolerance, 0);
+      ASSERT_NEAR(r.best.value, full.best.value, 2 * tolerance) << c.name << " q " << q.transpose();
+      ASSERT_LE(r.lowerBound, full.best.value + tolerance) << c.name;
+      ASSERT_GE(r.lowerBound, r.best.value - tolerance) << c.name;
+      ASSERT_NEAR((r.best.point - q).norm(), r.best.value, 1e-12 * size);
+    }
+  // Cells near a centre of curvature (the torus's core circle, the sphere's centre) or with too many pieces
+  // are left to the search: most are settled.
+  std::printf("%s: cells answered %d of %zu\n", c.name, answered, queries.size());
+  EXPECT_GT(answered, c.solid ? 1500 : 1000) << c.name;
+  EXPECT_GT(cells.bytes(), 0u);
+}
+
+TEST(NurbsPointCells, AnswersAsTheFullSearch) {
+  for (const Case& c : cases()) expectCellsMatchSearch(c, 1e-13 * 3.6);
+}
+
+TEST(NurbsPointCells, AnswersAtTinyAndHugeScales) {
+  for (double scale : {1e-4, 1e4})
+    for (const Case& c : cases(scale)) {
+      if (std::string(c.name) == "wavy") continue;  // its fixture has no scale
+      expectCellsMatchSearch(c, 1e-13 * 3.6 * scale);
+    }
+}
+
+TEST(NurbsPointCells, ModelQueriesAgreeAcrossThreadsAndPasses) {
+  unidist::NurbsModel model({nurbs_fixtures::torusSurface()}, true);
+  model.preparePointQueries();
+  const std::vector<Vec> queries = randomPoints(Vec(1.6, 1.6, 0.6), 4000, 9);
+  const double size = model.localBounds().diagonal();
+  std::vector<double> truth;
+  for (const Vec& q : queries)
+    truth.push_back(minimise(model.forest(), model.patches(), PointObjective(q, size), 1e-13 * size, 0).best.value);
+  // Four threads build and use the same cells at once, three passes each.
+  std::vector<int> wrong(4, 0);
+  std::vector<std::thread> threads;
+  for (int t = 0; t < 4; ++t)
+    threads.emplace_back([&, t] {
+      for (int pass = 0; pass < 3; ++pass)
+        for (std::size_t k = static_cast<std::size_t>(t); k < queries.size(); k += 2) {
+          const unidist::SurfacePoint p = model.closestPoint(queries[k]);
+          wrong[static_cast<std::size_t>(t)] += std::abs(std::abs(p.signedDistance) - truth[k]) > 1e-12 || p.error > 1e-12;
+        }
+    });
+  for (std::thread& t : threads) t.join();
+  for (int w : wrong) EXPECT_EQ(w, 0);
+  bool reported = false;
+  for (const unidist::StructureReport& s : model.structures())
+    if (s.name == "point-cells") reported = s.built && s.bytes > 0;
+  EXPECT_TRUE(reported);
+}
+
+// A cell is made by the first query in it, from its centre alone: an answer never depends on the queries
+// before it (the pair routines compare answers bit for bit across argument orders).
+TEST(NurbsPointCells, AnswersDependOnTheQueryOnly) {
+  const std::vector<Vec> queries = randomPoints(Vec(1.6, 1.6, 0.6), 1500, 13);
+  unidist::NurbsModel fresh({nurbs_fixtures::torusSurface()}, true), used({nurbs_fixtures::torusSurface()}, true);
+  const unidist::NurbsModel plain({nurbs_fixtures::torusSurface()}, true);
+  fresh.preparePointQueries();
+  used.preparePointQueries();
+  for (const Vec& q : randomPoints(Vec(1.6, 1.6, 0.6), 3000, 14)) (void)used.closestPoint(q);
+  for (auto it = queries.rbegin(); it != queries.rend(); ++it) (void)used.closestPoint(*it);
+  for (const Vec& q : queries) {
+    const unidist::SurfacePoint a = fresh.closestPoint(q), b = used.closestPoint(q);
+    ASSERT_EQ(a.signedDistance, b.signedDistance);
+    ASSERT_EQ(a.point, b.point);
+    ASSERT_EQ(a.normal, b.normal);
+    ASSERT_EQ(a.error, b.error);
+    // Unprepared, the search answers the same distance to the tolerance.
+    ASSERT_NEAR(plain.closestPoint(q).signedDistance, a.signedDistance, 1e-12);
+  }
+}
+
+TEST(NurbsPointCells, QueriesOutsideTheGridTakeTheSearch) {
+  const unidist::NurbsModel model({nurbs_fixtures::sphereSurface()}, true);
+  const double size = model.localBounds().diagonal();
+  const PointCells cells(Vec::Constant(-1), Vec::Constant(1), 0.1);
+  SearchResult r;
+  for (const Vec& q : {Vec(5, 0, 0), Vec(-1.5, 0, 0), Vec(0, 0, 1.01)})
+    EXPECT_FALSE(cells.closest(model.forest(), model.patches(), PointObjective(q, size), q, size, 1e-12, r));
+  // Far outside: the model's own query is exact all the same.
+  unidist::NurbsModel prepared({nurbs_fixtures::sphereSurface()}, true);
+  prepared.preparePointQueries();
+  EXPECT_NEAR(prepared.closestPoint(Vec(50, 0, 0)).signedDistance, 49, 1e-12);
+}
+
+}  // namespace
