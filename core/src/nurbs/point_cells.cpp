@@ -34,6 +34,23 @@ bool stationary(const PatchNode& n, const PatchHit& h) {
 
 }  // namespace
 
+/// Where a node's run (or single evaluation) starts: for the first node searched, the cell centre's answer moved
+/// by the predicted step; for a later one its point nearest the best so far (beside it the gradient there points
+/// out of the node and no run is needed): the best's parameters kept to the node, or in another patch the node's
+/// corner nearest the best point.
+Eigen::Vector2d PointCells::runStart(const Cell& cell, const PatchNode& n, const PatchHit* best, const Eigen::Vector3d& q) {
+  if (!best && n.patch == cell.patch) {
+    const Eigen::Vector2d predicted = cell.foot + cell.follow * (q - cell.centre);
+    return clampInto(n, predicted[0], predicted[1]);
+  }
+  if (!best) return {0.5 * (n.s0 + n.s1), 0.5 * (n.t0 + n.t1)};
+  if (n.patch == best->patch) return clampInto(n, best->s, best->t);
+  std::size_t nearest = 0;
+  for (std::size_t corner = 1; corner < 4; ++corner)
+    if ((n.corners[corner] - best->point).squaredNorm() < (n.corners[nearest] - best->point).squaredNorm()) nearest = corner;
+  return {nearest & 1 ? n.s1 : n.s0, nearest & 2 ? n.t1 : n.t0};
+}
+
 PointCells::PointCells(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, double cell) : lo_(lo), size_(cell) {
   for (int a = 0; a < 3; ++a) count_[a] = std::max(1, static_cast<int>(std::ceil((hi[a] - lo[a]) / cell)));
 }
@@ -84,7 +101,7 @@ std::unique_ptr<PointCells::Cell> PointCells::build(const PatchForest& forest,
   };
   std::vector<const PatchNode*> stack;
   for (const auto& root : forest.roots) stack.push_back(root.get());
-  std::vector<std::unique_ptr<PatchNode>> arena;  // stays empty: the proofs stop at the cached depth
+  std::vector<std::unique_ptr<PatchNode>> arena;  // stays empty: the proofs stop above the cached depth
   GradientScratch scratch;
   int visited = 0;
   while (!stack.empty()) {
@@ -181,24 +198,8 @@ bool PointCells::closest(const PatchForest& forest, const std::vector<RationalBe
       continue;
     }
     const RationalBezierPatch& patch = patches[static_cast<std::size_t>(n.patch)];
-    // The first node searched runs from the predicted answer; a later one is first tried at its point nearest
-    // the best so far (beside it, the gradient there points out of the node and no run is needed).
-    // Beside the best in another patch, the node's corner nearest the best point stands in for it.
     const bool first = !(best.value < std::numeric_limits<double>::infinity());
-    const Eigen::Vector2d predicted = cell.foot + cell.follow * (q - cell.centre);
-    Eigen::Vector2d start = Eigen::Vector2d(0.5 * (n.s0 + n.s1), 0.5 * (n.t0 + n.t1));
-    if (first && n.patch == cell.patch) {
-      start = clampInto(n, predicted[0], predicted[1]);
-    } else if (!first && n.patch == best.patch) {
-      start = clampInto(n, best.s, best.t);
-    } else if (!first) {
-      int nearest = 0;
-      for (int k = 1; k < 4; ++k)
-        if ((n.corners[static_cast<std::size_t>(k)] - best.point).squaredNorm() <
-            (n.corners[static_cast<std::size_t>(nearest)] - best.point).squaredNorm())
-          nearest = k;
-      start = {nearest & 1 ? n.s1 : n.s0, nearest & 2 ? n.t1 : n.t0};
-    }
+    const Eigen::Vector2d start = runStart(cell, n, first ? nullptr : &best, q);
     PatchHit hit;
     double bound = -std::numeric_limits<double>::infinity();
     if (!first) {

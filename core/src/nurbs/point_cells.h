@@ -53,6 +53,7 @@ class PointCells {
   };
   const Cell* cellAt(const PatchForest& forest, const std::vector<RationalBezierPatch>& patches, int index,
                      double modelSize, double tolerance) const;
+  static Eigen::Vector2d runStart(const Cell& cell, const PatchNode& n, const PatchHit* best, const Eigen::Vector3d& q);
   std::unique_ptr<Cell> build(const PatchForest& forest, const std::vector<RationalBezierPatch>& patches,
                               const Eigen::Vector3d& centre, double reach, double modelSize, double tolerance) const;
 
