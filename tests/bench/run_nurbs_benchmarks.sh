@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Regenerates docs/results/nurbs_vs_occt.{txt,csv} and nurbs_tolerance.png: unidist's NURBS queries beside
-# OpenCASCADE 7.6 (tests/bench/nurbs_vs_occt.cpp), and our time and error against the tolerance.
+# OpenCASCADE 7.6 (tests/bench/nurbs_vs_occt.cpp), our time and error against the tolerance, and the point
+# query medians beside OpenCASCADE's (nurbs_points.png).
 # usage: tests/bench/run_nurbs_benchmarks.sh [build-dir] [points-per-model]
 #        (a Release build; needs libocct-modeling-algorithms-dev and libtbb-dev, and gnuplot for the plot)
 #        PLOT_ONLY=1 tests/bench/run_nurbs_benchmarks.sh    redraws the plot from the committed CSV
@@ -27,5 +28,12 @@ if command -v gnuplot >/dev/null; then
   awk -F, -v dir="$TMP" '$1 == "tolerance" { name = $2; gsub(/ /, "_", name); print $3, $4, $5, $6 > (dir "/" name ".dat") }' \
     "$OUT/nurbs_vs_occt.csv"
   gnuplot -e "dir='$TMP'; out='$OUT/nurbs_tolerance.png'" "$ROOT/tests/bench/plot_nurbs_tolerance.gp"
+  # Point medians: one row per model, columns in the plot's order.
+  awk -F, '$1 == "point" { m[$2 "|" $3] = $5; if (!($2 in seen)) { seen[$2] = 1; order[++n] = $2 } }
+    END { for (i = 1; i <= n; ++i) { k = order[i]; name = k; gsub(/ /, "-", name)
+            printf "%s %s %s %s %s %s %s\n", name, m[k "|unidist prepared"], m[k "|unidist prepared cold"],
+                   m[k "|unidist"], m[k "|occt Tree"], m[k "|occt Tree MIN"], m[k "|occt Grad"] } }' \
+    "$OUT/nurbs_vs_occt.csv" > "$TMP/points.dat"
+  gnuplot -e "data='$TMP/points.dat'; out='$OUT/nurbs_points.png'" "$ROOT/tests/bench/plot_nurbs_points.gp"
 fi
-echo "wrote $OUT/nurbs_vs_occt.{txt,csv} and nurbs_tolerance.png"
+echo "wrote $OUT/nurbs_vs_occt.{txt,csv}, nurbs_tolerance.png and nurbs_points.png"
