@@ -1,6 +1,7 @@
 // The NURBS point query's convexity proof (point_convexity.h) and query cells (point_cells.h): every bound
 // checked against dense sampling of the exact surface, every cell answer against the full search.
 #include "core/nurbs_fixtures.h"
+#include "core/nurbs_oracle.h"
 #include "nurbs/objectives.h"
 #include "nurbs/patch_search.h"
 #include "nurbs/point_cells.h"
@@ -11,6 +12,7 @@
 
 #include <Eigen/Eigenvalues>
 
+#include <functional>
 #include <random>
 #include <thread>
 
@@ -19,17 +21,24 @@ namespace {
 using Vec = Eigen::Vector3d;
 using namespace unidist::nurbs;
 
+// Signed distances to the exact torus (core radius R, tube a) and sphere (radius R), both about the origin.
+double torusDistance(const Vec& q, double R, double a) { return std::hypot(std::hypot(q.x(), q.y()) - R, q.z()) - a; }
+double sphereDistance(const Vec& q, double R) { return q.norm() - R; }
+
 struct Case {
   const char* name;
   unidist::NurbsSurface surface;
   bool solid;
   Vec extent;  // queries uniform in [−extent, extent]
+  std::function<double(const Vec&)> truth;  // the distance in closed form; empty: the grid + Newton oracle
 };
 
 std::vector<Case> cases(double scale = 1) {
-  return {{"torus", nurbs_fixtures::torusSurface(1, 0.25, scale), true, scale * Vec(1.6, 1.6, 0.6)},
-          {"sphere", nurbs_fixtures::sphereSurface(scale), true, scale * Vec(2, 2, 2)},
-          {"wavy", nurbs_fixtures::wavySurface(), false, Vec(1.6, 1.6, 0.64)}};
+  return {{"torus", nurbs_fixtures::torusSurface(1, 0.25, scale), true, scale * Vec(1.6, 1.6, 0.6),
+           [scale](const Vec& q) { return std::abs(torusDistance(q, scale, 0.25 * scale)); }},
+          {"sphere", nurbs_fixtures::sphereSurface(scale), true, scale * Vec(2, 2, 2),
+           [scale](const Vec& q) { return std::abs(sphereDistance(q, scale)); }},
+          {"wavy", nurbs_fixtures::wavySurface(), false, Vec(1.6, 1.6, 0.64), nullptr}};
 }
 
 std::vector<Vec> randomPoints(const Vec& extent, int count, unsigned seed) {
@@ -135,9 +144,11 @@ TEST(NurbsPointConvexity, SearchProvesThePremiseOnTheTorus) {
   EXPECT_GE(proved, 1000);
 }
 
-// Cells answer most repeated queries, each as the full search does.
+// Cells answer most repeated queries, each as the full search does and as the truth has it (closed forms;
+// the grid + Newton oracle on every tenth point of the wavy patch, whose oracle is slow).
 void expectCellsMatchSearch(const Case& c, double tolerance) {
   const unidist::NurbsModel model({c.surface}, c.solid);
+  const nurbs_fixtures::GridOracle oracle(c.surface);
   const double size = model.localBounds().diagonal();
   const Vec margin = Vec::Constant(0.5 * size);
   const PointCells cells(model.localBounds().min - margin, model.localBounds().max + margin, size / 32);
@@ -145,12 +156,17 @@ void expectCellsMatchSearch(const Case& c, double tolerance) {
   int answered = 0;
   constexpr int kPasses = 2;  // a cell is built by its first query
   for (int pass = 0; pass < kPasses; ++pass)
-    for (const Vec& q : queries) {
-      const PointObjective f(q, size);
+    for (std::size_t k = 0; k < queries.size(); ++k) {
+      const Vec& q = queries[k];
       SearchResult r;
-      if (!cells.closest(model.forest(), model.patches(), f, q, size, tolerance, r)) continue;
+      if (!cells.closest(model.forest(), model.patches(), q, size, tolerance, r)) continue;
       answered += pass == kPasses - 1;
-      const SearchResult full = minimise(model.forest(), model.patches(), f, tolerance, 0);
+      if (c.truth) {
+        ASSERT_NEAR(r.best.value, c.truth(q), 1e-10 * size) << c.name << " q " << q.transpose();
+      } else if (pass == 0 && k % 10 == 0) {
+        ASSERT_NEAR(r.best.value, oracle.distance(q), 1e-9 * size) << c.name << " q " << q.transpose();
+      }
+      const SearchResult full = minimise(model.forest(), model.patches(), PointObjective(q, size), tolerance, 0);
       ASSERT_NEAR(r.best.value, full.best.value, 2 * tolerance) << c.name << " q " << q.transpose();
       ASSERT_LE(r.lowerBound, full.best.value + tolerance) << c.name;
       ASSERT_GE(r.lowerBound, r.best.value - tolerance) << c.name;
@@ -179,10 +195,8 @@ TEST(NurbsPointCells, ModelQueriesAgreeAcrossThreadsAndPasses) {
   unidist::NurbsModel model({nurbs_fixtures::torusSurface()}, true);
   model.preparePointQueries();
   const std::vector<Vec> queries = randomPoints(Vec(1.6, 1.6, 0.6), 4000, 9);
-  const double size = model.localBounds().diagonal();
   std::vector<double> truth;
-  for (const Vec& q : queries)
-    truth.push_back(minimise(model.forest(), model.patches(), PointObjective(q, size), 1e-13 * size, 0).best.value);
+  for (const Vec& q : queries) truth.push_back(torusDistance(q, 1, 0.25));
   // Four threads build and use the same cells at once, three passes each.
   std::vector<int> wrong(4, 0);
   std::vector<std::thread> threads;
@@ -191,7 +205,7 @@ TEST(NurbsPointCells, ModelQueriesAgreeAcrossThreadsAndPasses) {
       for (int pass = 0; pass < 3; ++pass)
         for (std::size_t k = static_cast<std::size_t>(t); k < queries.size(); k += 2) {
           const unidist::SurfacePoint p = model.closestPoint(queries[k]);
-          wrong[static_cast<std::size_t>(t)] += std::abs(std::abs(p.signedDistance) - truth[k]) > 1e-12 || p.error > 1e-12;
+          wrong[static_cast<std::size_t>(t)] += std::abs(p.signedDistance - truth[k]) > 1e-12 || p.error > 1e-12;
         }
     });
   for (std::thread& t : threads) t.join();
@@ -229,7 +243,7 @@ TEST(NurbsPointCells, QueriesOutsideTheGridTakeTheSearch) {
   const PointCells cells(Vec::Constant(-1), Vec::Constant(1), 0.1);
   SearchResult r;
   for (const Vec& q : {Vec(5, 0, 0), Vec(-1.5, 0, 0), Vec(0, 0, 1.01)})
-    EXPECT_FALSE(cells.closest(model.forest(), model.patches(), PointObjective(q, size), q, size, 1e-12, r));
+    EXPECT_FALSE(cells.closest(model.forest(), model.patches(), q, size, 1e-12, r));
   // Far outside: the model's own query is exact all the same.
   unidist::NurbsModel prepared({nurbs_fixtures::sphereSurface()}, true);
   prepared.preparePointQueries();

@@ -144,7 +144,6 @@ class NurbsModel final : public Model {
   /// made. Answers stay a function of the query point alone (a cell is made from its centre only), proved to
   /// the same tolerance. Call before sharing the model between threads; off by default.
   void preparePointQueries() { prepared_ = true; }
-  bool pointQueriesPrepared() const { return prepared_; }
 
   ModelType type() const override { return ModelType::Nurbs; }
   SurfacePoint closestPoint(const Eigen::Vector3d& q_M) const override;

@@ -1,5 +1,5 @@
 #include "nurbs/gradient_sign.h"
-#include "nurbs/binomial.h"
+#include "nurbs/bernstein_product.h"
 
 #include <algorithm>
 #include <cmath>
@@ -11,31 +11,6 @@ namespace {
 constexpr double kEps = std::numeric_limits<double>::epsilon();
 // The subdivided net's rounding, as the balls allow for it (patch_tree.cpp, ballOfNet): 256 ulps.
 constexpr double kNetUlps = 256;
-
-/// Bernstein coefficients of the product of a degree-(n, m) polynomial (coefficients x, u-major) and a
-/// degree-(a, b) one (y), each coefficient pair combined by mul, into `out` (degree (n + a, m + b), u-major).
-template <class T, class X, class Y, class Mul>
-void product(int n, int m, const std::vector<X>& x, int a, int b, const std::vector<Y>& y, Mul mul, const T& zero,
-             std::vector<T>& out) {
-  // The weights C(n,i) C(a,k) / C(n+a,i+k) once per direction (a product runs per new node).
-  double fu[kMaxNurbsDegree + 1][2 * kMaxNurbsDegree + 1], fv[kMaxNurbsDegree + 1][2 * kMaxNurbsDegree + 1];
-  for (int i = 0; i <= n; ++i)
-    for (int k = 0; k <= a; ++k) fu[i][k] = binomial(n, i) * binomial(a, k) / binomial(n + a, i + k);
-  for (int j = 0; j <= m; ++j)
-    for (int l = 0; l <= b; ++l) fv[j][l] = binomial(m, j) * binomial(b, l) / binomial(m + b, j + l);
-  const int cols = m + b + 1;
-  out.assign(static_cast<std::size_t>((n + a + 1) * cols), zero);
-  for (int i = 0; i <= n; ++i)
-    for (int j = 0; j <= m; ++j) {
-      const X& xi = x[static_cast<std::size_t>(i * (m + 1) + j)];
-      for (int k = 0; k <= a; ++k) {
-        T* row = &out[static_cast<std::size_t>((i + k) * cols + j)];
-        const Y* yk = &y[static_cast<std::size_t>(k * (b + 1))];
-        const double f = fu[i][k];
-        for (int l = 0; l <= b; ++l) row[l] += (f * fv[j][l]) * mul(xi, yk[l]);
-      }
-    }
-}
 
 /// +1 or −1 when every value over rows k0..k1 and columns l0..l1 of a grid with `cols` columns is beyond
 /// `margin` with that sign, else 0.
@@ -170,14 +145,12 @@ std::shared_ptr<const GradientForm> makeForm(const PatchNode& n) {
     X[k] = net.net[k].head<3>() - F->centre * net.net[k][3];
     W[k] = net.net[k][3];
   }
-  const auto dot = [](const Eigen::Vector3d& x, const Eigen::Vector3d& d) { return x.dot(d); };
-  const auto scaled = [](double w, const Eigen::Vector3d& d) -> Eigen::Vector3d { return w * d; };
   const Eigen::Vector3d zero = Eigen::Vector3d::Zero();
-  product(p, q, X, 2 * p - 1, 2 * q, du, dot, 0.0, F->pu);
+  product(p, q, X, 2 * p - 1, 2 * q, du, dotOf, 0.0, F->pu);
   std::vector<Eigen::Vector3d> qu, qv;
-  product(p, q, W, 2 * p - 1, 2 * q, du, scaled, zero, qu);
-  product(p, q, X, 2 * p, 2 * q - 1, dv, dot, 0.0, F->pv);
-  product(p, q, W, 2 * p, 2 * q - 1, dv, scaled, zero, qv);
+  product(p, q, W, 2 * p - 1, 2 * q, du, scaledBy, zero, qu);
+  product(p, q, X, 2 * p, 2 * q - 1, dv, dotOf, 0.0, F->pv);
+  product(p, q, W, 2 * p, 2 * q - 1, dv, scaledBy, zero, qv);
   for (int c = 0; c < 3; ++c) {
     for (const Eigen::Vector3d& x : qu) F->qu[static_cast<std::size_t>(c)].push_back(x[c]);
     for (const Eigen::Vector3d& x : qv) F->qv[static_cast<std::size_t>(c)].push_back(x[c]);

@@ -65,7 +65,7 @@ NurbsModel::NurbsModel(std::vector<NurbsSurface> surfaces, bool solid) : surface
     findIncidents();
   }
   for (const NurbsSurface& s : surfaces_) periodic_.push_back(findPeriodic(s));
-  // Query cells over the model's box and half its size around it, a sixteenth of its size across.
+  // Query cells (used once preparePointQueries() is called) over the model's box and half its size around it.
   const double size = bounds_.diagonal();
   const Eigen::Vector3d margin = Eigen::Vector3d::Constant(kCellMargin * size);
   cells_ = std::make_unique<nurbs::PointCells>(bounds_.min - margin, bounds_.max + margin, size / kCellsAcross);
@@ -201,10 +201,9 @@ Eigen::Vector3d NurbsModel::normalAt(const nurbs::PatchHit& h) const {
 SurfacePoint NurbsModel::closestPoint(const Eigen::Vector3d& q_M) const {
   if (!q_M.allFinite()) throw InputError("NURBS point query: the query point is not finite");
   const double size = bounds_.diagonal();
-  const nurbs::PointObjective objective(q_M, size);
   nurbs::SearchResult r;
-  if (!prepared_ || !cells_->closest(*forest_, patches_, objective, q_M, size, kRelativeTolerance * size, r))
-    r = nurbs::minimise(*forest_, patches_, objective, kRelativeTolerance * size, 0);
+  if (!prepared_ || !cells_->closest(*forest_, patches_, q_M, size, kRelativeTolerance * size, r))
+    r = nurbs::minimise(*forest_, patches_, nurbs::PointObjective(q_M, size), kRelativeTolerance * size, 0);
   const nurbs::PatchHit& h = r.best;
   const RationalBezierPatch& P = patches_[static_cast<std::size_t>(h.patch)];
   SurfacePoint out;

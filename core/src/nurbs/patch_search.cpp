@@ -44,13 +44,23 @@ void Objective::startBounds(const StartSet& start, double below, double* out) co
   }
 }
 
-PatchHit pointAt(const RationalBezierPatch& patch, int index, const Objective& f, double s, double t) {
-  const SurfaceDerivatives d = patch.derivatives(s, t);
-  PatchHit hit{index, s, t, f.value(d.point), d.point};
+namespace {
+
+// What a hit keeps of its last evaluation: the normal (for the sign; left out at a pole) and the gradient with its
+// rounding (basinBound's tangent plane).
+void keepEvaluation(const Objective& f, const SurfaceDerivatives& d, PatchHit& hit) {
   if (!unitNormal(d, hit.normal)) hit.normal.setZero();
   Eigen::Matrix2d H;
   f.derivatives(d, hit.gradient, H);
   hit.gradientError = f.gradientError(d);
+}
+
+}  // namespace
+
+PatchHit pointAt(const RationalBezierPatch& patch, int index, const Objective& f, double s, double t) {
+  const SurfaceDerivatives d = patch.derivatives(s, t);
+  PatchHit hit{index, s, t, f.value(d.point), d.point};
+  keepEvaluation(f, d, hit);
   return hit;
 }
 
@@ -120,12 +130,7 @@ PatchHit polish(const RationalBezierPatch& patch, int index, const Objective& f,
   hit.t = x[1];
   hit.value = value;
   hit.point = d.point;
-  // The normal comes with the last evaluation (the caller needs it for the sign); at a pole it is left out.
-  if (!unitNormal(d, hit.normal)) hit.normal.setZero();
-  // So does the gradient there (basinBound's tangent plane).
-  Eigen::Matrix2d H;
-  f.derivatives(d, hit.gradient, H);
-  hit.gradientError = f.gradientError(d);
+  keepEvaluation(f, d, hit);
   return hit;
 }
 

@@ -79,7 +79,7 @@ struct PatchNode {
   mutable std::array<std::unique_ptr<PatchNode>, 4> cached;
   mutable std::once_flag gradientOnce;  // the gradient's Bernstein form, made when first asked (gradient_sign.h)
   mutable std::shared_ptr<const GradientForm> gradient;
-  mutable std::once_flag curvatureOnce;  // its Hessian's q-independent enclosures, likewise (point_convexity.h)
+  mutable std::once_flag curvatureOnce;  // the Hessian's q-independent Bernstein forms, likewise (point_convexity.h)
   mutable std::shared_ptr<const CurvatureForm> curvature;
 };
 

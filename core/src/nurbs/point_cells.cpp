@@ -67,7 +67,8 @@ std::unique_ptr<PointCells::Cell> PointCells::build(const PatchForest& forest,
                                                     const Eigen::Vector3d& centre, double reach, double modelSize,
                                                     double tolerance) const {
   auto cell = std::make_unique<Cell>();
-  const SearchResult foot = minimise(forest, patches, PointObjective(centre, modelSize), tolerance, 0);
+  const PointObjective objective(centre, modelSize);
+  const SearchResult foot = minimise(forest, patches, objective, tolerance, 0);
   if (foot.exhausted) return cell;
   // Every query within reach of the centre is within this of the centre's nearest point.
   const double upper = foot.best.value + reach;
@@ -78,7 +79,6 @@ std::unique_ptr<PointCells::Cell> PointCells::build(const PatchForest& forest,
   cell->foot = {foot.best.s, foot.best.t};
   Eigen::Matrix<double, 2, 3>& follow = cell->follow;
   {
-    const PointObjective objective(centre, modelSize);
     const SurfaceDerivatives d = patches[static_cast<std::size_t>(foot.best.patch)].derivatives(foot.best.s, foot.best.t);
     Eigen::Vector2d g;
     Eigen::Matrix2d H;
@@ -161,8 +161,7 @@ const PointCells::Cell* PointCells::cellAt(const PatchForest& forest, const std:
 }
 
 bool PointCells::closest(const PatchForest& forest, const std::vector<RationalBezierPatch>& patches,
-                         const Objective& f, const Eigen::Vector3d& q, double modelSize, double tolerance,
-                         SearchResult& out) const {
+                         const Eigen::Vector3d& q, double modelSize, double tolerance, SearchResult& out) const {
   const Eigen::Vector3d x = (q - lo_) / size_;
   if (!(x.minCoeff() >= 0)) return false;
   Eigen::Vector3i at;
@@ -172,6 +171,7 @@ bool PointCells::closest(const PatchForest& forest, const std::vector<RationalBe
   }
   const Cell& cell = *cellAt(forest, patches, at[0] + count_[0] * (at[1] + count_[1] * at[2]), modelSize, tolerance);
   if (!cell.settled) return false;
+  const PointObjective f(q, modelSize);
   out = SearchResult{};
   PatchHit& best = out.best;
   best.value = std::numeric_limits<double>::infinity();

@@ -29,9 +29,9 @@ class PointCells {
   PointCells& operator=(const PointCells&) = delete;
 
   /// The nearest point of the patches to q, proved to `tolerance` (result.lowerBound), or false when q's cell
-  /// is not settled (the caller runs the full search). `objective` is the point objective for q.
-  bool closest(const PatchForest& forest, const std::vector<RationalBezierPatch>& patches, const Objective& objective,
-               const Eigen::Vector3d& q, double modelSize, double tolerance, SearchResult& result) const;
+  /// is not settled (the caller runs the full search).
+  bool closest(const PatchForest& forest, const std::vector<RationalBezierPatch>& patches, const Eigen::Vector3d& q,
+               double modelSize, double tolerance, SearchResult& result) const;
 
   std::size_t bytes() const { return bytes_.load(); }
   bool built() const { return made_.load() > 0; }

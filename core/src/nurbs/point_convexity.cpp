@@ -1,5 +1,5 @@
 #include "nurbs/point_convexity.h"
-#include "nurbs/binomial.h"
+#include "nurbs/bernstein_product.h"
 
 #include <Eigen/Core>
 
@@ -36,30 +36,15 @@ struct Grid {
   }
 };
 
-/// The product (coefficients combined by mul), its size and error bounds: Bernstein product weights sum to one
-/// per coefficient, so sizes multiply; each coefficient sums (da + 1)(db + 1) rounded products at most.
+/// The product (coefficients combined by mul; bernstein_product.h), its size and error bounds: Bernstein product
+/// weights sum to one per coefficient, so sizes multiply; each coefficient sums at most (da + 1)(db + 1) rounded
+/// products.
 template <class T, class T1, class B, class Mul>
 Grid<T> product(const Grid<T1>& a, const Grid<B>& b, Mul mul, const T& zero) {
   Grid<T> out;
   out.du = a.du + b.du;
   out.dv = a.dv + b.dv;
-  out.c.assign(static_cast<std::size_t>((out.du + 1) * (out.dv + 1)), zero);
-  // The weights C(da,i) C(db,k) / C(da+db,i+k) once per direction (a form is made once per node).
-  std::vector<double> fv(static_cast<std::size_t>((a.dv + 1) * (b.dv + 1)));
-  for (int j = 0; j <= a.dv; ++j)
-    for (int l = 0; l <= b.dv; ++l)
-      fv[static_cast<std::size_t>(j * (b.dv + 1) + l)] = binomial(a.dv, j) * binomial(b.dv, l) / binomial(out.dv, j + l);
-  for (int i = 0; i <= a.du; ++i)
-    for (int k = 0; k <= b.du; ++k) {
-      const double fu = binomial(a.du, i) * binomial(b.du, k) / binomial(out.du, i + k);
-      for (int j = 0; j <= a.dv; ++j) {
-        const T1& x = a.at(i, j);
-        T* row = &out.c[static_cast<std::size_t>((i + k) * (out.dv + 1) + j)];
-        const double* w = &fv[static_cast<std::size_t>(j * (b.dv + 1))];
-        const B* y = &b.c[static_cast<std::size_t>(k * (b.dv + 1))];
-        for (int l = 0; l <= b.dv; ++l) row[l] += (fu * w[l]) * mul(x, y[l]);
-      }
-    }
+  nurbs::product(a.du, a.dv, a.c, b.du, b.dv, b.c, mul, zero, out.c);
   out.measure();
   const double terms = (a.du + 1.0) * (a.dv + 1.0) * (b.du + 1.0) * (b.dv + 1.0);
   out.err = a.size * b.err + a.err * b.size + a.err * b.err + 4 * terms * kEps * a.size * b.size;
@@ -117,9 +102,6 @@ T middle(const Grid<T>& g) {
   return c.front();
 }
 
-const auto dotProduct = [](const Eigen::Vector3d& x, const Eigen::Vector3d& y) { return x.dot(y); };
-const auto scaled = [](double w, const Eigen::Vector3d& y) -> Eigen::Vector3d { return w * y; };
-
 std::shared_ptr<const CurvatureForm> makeForm(const PatchNode& n) {
   auto F = std::make_shared<CurvatureForm>();
   const RationalBezierPatch& net = n.net;
@@ -165,14 +147,14 @@ std::shared_ptr<const CurvatureForm> makeForm(const PatchNode& n) {
   for (std::size_t k = 0; k < 3; ++k) {
     const int a = pairs[k][0], b = pairs[k][1];
     // E_ab = (D_a)_b W − 2 W_b D_a.
-    const Grid<Eigen::Vector3d> first = product(W, derivative(D[a], b == 0), scaled, Eigen::Vector3d::Zero().eval());
-    Grid<Eigen::Vector3d> second = product(Wd[b], D[a], scaled, Eigen::Vector3d::Zero().eval());
+    const Grid<Eigen::Vector3d> first = product(W, derivative(D[a], b == 0), scaledBy, Eigen::Vector3d::Zero().eval());
+    Grid<Eigen::Vector3d> second = product(Wd[b], D[a], scaledBy, Eigen::Vector3d::Zero().eval());
     for (Eigen::Vector3d& x : second.c) x *= 2;
     second.size *= 2;
     second.err *= 2;
     const Grid<Eigen::Vector3d> E = difference(first, second);
-    const Grid<double> P = sum(product(D[a], D[b], dotProduct, 0.0), product(X, E, dotProduct, 0.0));
-    const Grid<Eigen::Vector3d> Q = product(W, E, scaled, Eigen::Vector3d::Zero().eval());
+    const Grid<double> P = sum(product(D[a], D[b], dotOf, 0.0), product(X, E, dotOf, 0.0));
+    const Grid<Eigen::Vector3d> Q = product(W, E, scaledBy, Eigen::Vector3d::Zero().eval());
     F->middleP[k] = middle(P);
     F->middleQ[k] = middle(Q);
     for (const double x : P.c) F->spreadP[k] = std::max(F->spreadP[k], std::abs(x - F->middleP[k]));
@@ -275,14 +257,14 @@ double convexDistanceBound(const PatchNode& n, const Eigen::Vector3d& q, const P
   if (!std::isfinite(h.gradientError) || !(curvature > 0)) return -std::numeric_limits<double>::infinity();
   // Convex on the box: f(y) >= f(h) + g·(y − h) + ½ curvature |y − h|² (y in the node's own parameters, where
   // the gradient is g times the box's widths). Per component: at a face of the box the gradient points out of
-  // (the run stopped there), the term is at least −error·reach; otherwise the plane's least value at a face, or
-  // the parabola's least value −(g w)² / (2 curvature), whichever is higher. g is known to within gradientError.
+  // (the run stopped there), the term is not negative once |g| exceeds its error, else at least −(error − |g|)·
+  // reach; otherwise the plane's least value at a face, or the parabola's least value −(g w)² / (2 curvature),
+  // whichever is higher. g is known to within gradientError.
   const double lo[2] = {n.s0, n.t0}, hi[2] = {n.s1, n.t1}, at[2] = {h.s, h.t};
   double f = 0.5 * h.value * h.value;
   for (int c = 0; c < 2; ++c) {
     const double g = h.gradient[c], e = h.gradientError, width = hi[c] - lo[c];
     const double reach = std::max(at[c] - lo[c], hi[c] - at[c]);
-    // Pointing out for certain (|g| beyond its error), the true term is not negative at all.
     const bool outward = (at[c] <= lo[c] && g >= 0) || (at[c] >= hi[c] && g <= 0);
     const double plane = std::min(g * (lo[c] - at[c]), g * (hi[c] - at[c])) - e * reach;
     const double gw = (std::abs(g) + e) * width;
