@@ -129,19 +129,63 @@ TEST(NurbsPointConvexity, BasinBoundIsBelowEveryPointOfTheNode) {
   }
 }
 
-// The search closes the leaf its Newton run ends in on the convexity proof, not the one-minimum premise,
-// wherever the distance is convex there: on the torus nearly everywhere.
-TEST(NurbsPointConvexity, SearchProvesThePremiseOnTheTorus) {
-  const unidist::NurbsModel model({nurbs_fixtures::torusSurface()}, true);
-  const double size = model.localBounds().diagonal();
-  int premised = 0, proved = 0;
-  for (const Vec& q : randomPoints(Vec(1.6, 1.6, 0.6), 1000, 17)) {
-    const SearchResult r = minimise(model.forest(), model.patches(), PointObjective(q, size), 1e-13 * size, 0);
-    premised += r.premised;
-    proved += r.convex;
+// Where a Newton run ends on a patch edge the node touches, the edge bound holds below every point of the node
+// (its least distance is on that edge), and from the run's end it is nearly the end's value.
+TEST(NurbsPointConvexity, EdgeBoundIsBelowEveryPointOfTheNode) {
+  for (const Case& c : cases()) {
+    const unidist::NurbsModel model({c.surface}, c.solid);
+    const double size = model.localBounds().diagonal();
+    int proved = 0, tight = 0, asked = 0;
+    for (const Vec& q : randomPoints(c.extent, 60, 9)) {
+      const PointObjective f(q, size);
+      for (const PatchNode* n : nodesTo(model.forest(), 3)) {
+        if (n->s0 > 0 && n->s1 < 1 && n->t0 > 0 && n->t1 < 1) continue;
+        const unidist::RationalBezierPatch& patch = model.patches()[static_cast<std::size_t>(n->patch)];
+        const PatchHit run = polish(patch, n->patch, f, 0.5 * (n->s0 + n->s1), 0.5 * (n->t0 + n->t1),
+                                    ParamBox{n->s0, n->s1, n->t0, n->t1});
+        if (!(run.s == 0 || run.s == 1 || run.t == 0 || run.t == 1)) continue;
+        ++asked;
+        const double bound = f.edgeBound(*n, model.forest(), run);
+        if (!(bound > -std::numeric_limits<double>::infinity())) continue;
+        double least = std::numeric_limits<double>::infinity();
+        for (int i = 0; i <= 24; ++i)
+          for (int j = 0; j <= 24; ++j)
+            least = std::min(least, (n->net.evaluate(i / 24.0, j / 24.0) - q).norm());
+        ASSERT_LE(bound, least + 1e-15) << c.name << " q " << q.transpose() << " depth " << n->depth;
+        // A corner h is proved outright; along an edge the run converged, so the bound is at its value.
+        tight += bound >= run.value - 1e-12 * size;
+        ++proved;
+      }
+    }
+    EXPECT_GT(proved, 0.2 * asked) << c.name << " of " << asked;  // the proof is not vacuous
+    EXPECT_GE(tight, 0.95 * proved) << c.name;
   }
-  EXPECT_LE(premised, 5);
-  EXPECT_GE(proved, 1000);
+}
+
+// The search closes the leaf its Newton run ends in on a proof, not the one-minimum premise: the convexity proof,
+// or the edge bound where the end is on the patch boundary (most of the wavy patch's points), or else it splits the
+// leaf. The premise is left for pieces next to a pole (the sphere's), where the parametrisation degenerates.
+TEST(NurbsPointConvexity, SearchRarelyRestsOnThePremise) {
+  // Per 1,000 queries: torus, sphere (58 measured, nearly all next to its poles), wavy (1). Before the edge bound
+  // and the splitting, 2,000 queries left 1, 72 and 1,270.
+  const int allowed[] = {2, 80, 5};
+  int k = 0;
+  for (const Case& c : cases()) {
+    const unidist::NurbsModel model({c.surface}, c.solid);
+    const nurbs_fixtures::GridOracle oracle(c.surface);
+    const double size = model.localBounds().diagonal();
+    int premised = 0, proved = 0, index = 0;
+    for (const Vec& q : randomPoints(c.extent, 1000, 17)) {
+      const SearchResult r = minimise(model.forest(), model.patches(), PointObjective(q, size), 1e-13 * size, 0);
+      premised += r.premised;
+      proved += r.convex;
+      if (index++ % 20 == 0) {
+        ASSERT_NEAR(r.best.value, c.truth ? c.truth(q) : oracle.distance(q), 1e-9 * size) << c.name;
+      }
+    }
+    EXPECT_LE(premised, allowed[k++]) << c.name;
+    EXPECT_GE(proved, 900) << c.name;
+  }
 }
 
 // Cells answer most repeated queries, each as the full search does and as the truth has it (closed forms;

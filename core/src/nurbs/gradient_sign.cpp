@@ -230,22 +230,45 @@ bool boundedSizes(const GradientForm& F, double r) { return F.sizeP + std::sqrt(
 /// No patch edge in the node: only interior minima, which need both components zero.
 bool interior(const PatchNode& n) { return n.s0 > 0 && n.s1 < 1 && n.t0 > 0 && n.t1 < 1; }
 
+/// How far a coefficient p_k − r·q_k of the point query's numerators may be from the exact one: the form's
+/// errors, r's rounding (an ulp of the larger of q and the centre), and, with `reach`, every point within that
+/// distance of q (it moves each coefficient by at most reach |q_k|).
+double pointMargin(const GradientForm& F, const Eigen::Vector3d& q, double reach) {
+  const double rn = (q - F.centre).norm();
+  const double slack = 2 * kEps * (q.cwiseAbs().maxCoeff() + F.centre.cwiseAbs().maxCoeff()) * std::sqrt(3.0) + reach;
+  return F.errP + (rn + reach) * F.errQ + slack * F.sizeQ * (1 + 1e-12) + 8 * kEps * (F.sizeP + (rn + reach) * F.sizeQ);
+}
+
 bool pointHoldsNoMinimum(const PatchNode& n, const PatchForest& forest, const Eigen::Vector3d& q, GradientScratch& g,
                          double negligible, double reach) {
   const GradientForm& F = gradientForm(n, forest);
   const Eigen::Vector3d r = q - F.centre;
   if (!boundedSizes(F, r.norm() + reach)) return false;
-  // r itself is rounded by an ulp of the larger of q and the centre; a point within `reach` of q moves each
-  // coefficient p_k − r·q_k by at most reach |q_k|.
-  const double slack = 2 * kEps * (q.cwiseAbs().maxCoeff() + F.centre.cwiseAbs().maxCoeff()) * std::sqrt(3.0) + reach;
-  const double margin = F.errP + (r.norm() + reach) * F.errQ + slack * F.sizeQ * (1 + 1e-12) +
-                        8 * kEps * (F.sizeP + (r.norm() + reach) * F.sizeQ);
+  const double margin = pointMargin(F, q, reach);
   int signs[2];
   signs[0] = combine(F.pu, r, F.qu, margin, g.u);
   if (signs[0] != 0 && interior(n)) return true;  // ∂/∂s never zero (the usual proof: v is not needed)
   signs[1] = combine(F.pv, r, F.qv, margin, g.v);
   if (interior(n)) return signs[1] != 0;
   return noMinimum(F, g.u, g.v, signs, n, margin, negligible);
+}
+
+PointGradientSigns pointGradientSigns(const PatchNode& n, const PatchForest& forest, const Eigen::Vector3d& q,
+                                      GradientScratch& g) {
+  const GradientForm& F = gradientForm(n, forest);
+  const Eigen::Vector3d r = q - F.centre;
+  PointGradientSigns out;
+  if (!boundedSizes(F, r.norm())) return out;
+  const double margin = pointMargin(F, q, 0);
+  out.whole[0] = combine(F.pu, r, F.qu, margin, g.u);
+  out.whole[1] = combine(F.pv, r, F.qv, margin, g.v);
+  // A side's line of coefficients is the restriction of the numerator to it.
+  const int cu = F.tu + 1, cv = F.tv + 1;
+  out.along[0] = signOver(g.v, cv, 0, 0, 0, F.tv, margin);
+  out.along[1] = signOver(g.v, cv, F.sv, F.sv, 0, F.tv, margin);
+  out.along[2] = signOver(g.u, cu, 0, F.su, 0, 0, margin);
+  out.along[3] = signOver(g.u, cu, 0, F.su, F.tu, F.tu, margin);
+  return out;
 }
 
 bool supportHoldsNoMinimum(const PatchNode& n, const PatchForest& forest, const Eigen::Vector3d& d, GradientScratch& g,

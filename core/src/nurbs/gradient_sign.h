@@ -53,6 +53,14 @@ struct GradientScratch {
 /// with `reach`, for every q within that distance of the given one.
 bool pointHoldsNoMinimum(const PatchNode& n, const PatchForest& forest, const Eigen::Vector3d& q, GradientScratch& g,
                          double negligible, double reach = 0);
+/// Signs of the gradient of ½|S − q|² over a node: +1 or −1 where every coefficient of the numerator has that
+/// sign beyond its rounding, else 0.
+struct PointGradientSigns {
+  int whole[2] = {0, 0};         // ∂/∂s and ∂/∂t throughout the node
+  int along[4] = {0, 0, 0, 0};   // the component along each side of the node (s = s0, s = s1, t = t0, t = t1) on it
+};
+PointGradientSigns pointGradientSigns(const PatchNode& n, const PatchForest& forest, const Eigen::Vector3d& q,
+                                      GradientScratch& g);
 /// The same for −d·S (d a unit vector).
 bool supportHoldsNoMinimum(const PatchNode& n, const PatchForest& forest, const Eigen::Vector3d& d, GradientScratch& g,
                            double negligible);

@@ -57,6 +57,10 @@ class PointObjective final : public Objective {
   double basinBound(const PatchNode& n, const PatchHit& h, double curvature) const override {
     return convexDistanceBound(n, q_, h, curvature);
   }
+  bool provesBasins() const override { return true; }
+  double edgeBound(const PatchNode& n, const PatchForest& forest, const PatchHit& h) const override {
+    return edgeDistanceBound(n, forest, q_, h, gradient_);
+  }
   // Near the surface the distance is convex over a small piece whatever q, so pieces of a fixed small size
   // are polished too (otherwise a query on the surface would subdivide down to the tolerance).
   double leafScale(const BoundingSphere& b) const override { return std::max((q_ - b.center).norm(), floor_); }

@@ -225,48 +225,64 @@ SearchResult minimise(const PatchForest& forest, const std::vector<RationalBezie
     const bool tiny = n.depth >= kMaxDepth || n.ball.radius <= tolerance;
     if (flat || tiny) {
       // A piece whose gradient proves it holds no minimum of its own is closed without a run (gradient_sign.h).
-      // Otherwise a Newton run from its centre; a small, nearly flat piece is taken to hold at most one minimum,
-      // so a run that ended inside it (or on one of its corners: at a pole every s is the same point) found it.
+      // Otherwise a Newton run from its centre. A run that ended inside the piece (or on one of its corners: at
+      // a pole every s is the same point) found its minimum where the objective is proved convex over the piece,
+      // or its least value is proved to be on the patch edge the run ended on; otherwise the piece's quarters are
+      // searched, as when the run leaves it. Both prove nothing across a continuum of minima (a circle of them
+      // around a torus's core circle, a sphere's centre or pole), where splitting would go on down to the
+      // tolerance: such a piece is closed on the run after kCertSplits levels, or at once when it touches a pole
+      // its run went to (the pieces around a pole double with every level), and counted as resting on the
+      // premise that a small flat piece holds one minimum (SearchResult::premised) or as unproved.
       const auto inside = [&n, tolerance](const PatchHit& m) {
         if (m.patch != n.patch) return false;
         if (m.s >= n.s0 && m.s <= n.s1 && m.t >= n.t0 && m.t <= n.t1) return true;
         return std::any_of(n.corners.begin(), n.corners.end(),
                            [&](const Eigen::Vector3d& c) { return (c - m.point).norm() <= tolerance; });
       };
-      // A piece over which the objective is proved convex holds no other minimum: the premise is then a proof.
-      const auto closeOn = [&](const PatchHit& h) {
-        const bool proved = n.depth <= kCachedDepth && h.patch == n.patch && h.s >= n.s0 && h.s <= n.s1 &&
-                            h.t >= n.t0 && h.t <= n.t1 && f.basinBound(n, h, f.curvature(n, forest)) >= out.best.value - tolerance;
-        ++(proved ? out.convex : out.premised);
-      };
-      if (flat) {
-        const auto end = std::find_if(polished.begin(), polished.end(), inside);
-        if (end != polished.end()) {
-          closeOn(*end);
-          continue;
+      const auto settled = [&](const PatchHit& h) {
+        const double enough = out.best.value - tolerance;
+        const bool inBox = h.s >= n.s0 && h.s <= n.s1 && h.t >= n.t0 && h.t <= n.t1;
+        const bool onEdge = h.s == 0 || h.s == 1 || h.t == 0 || h.t == 1;
+        if (n.depth <= kCachedDepth && inBox &&
+            ((onEdge && f.edgeBound(n, forest, h) >= enough) || f.basinBound(n, h, f.curvature(n, forest)) >= enough)) {
+          ++out.convex;
+          return true;
         }
-      }
-      if (flat && f.provesNoMinimum(n, forest, 0.5 * tolerance)) continue;
-      const RationalBezierPatch& patch = patches[static_cast<std::size_t>(n.patch)];
-      polished.push_back(polish(patch, n.patch, f, 0.5 * (n.s0 + n.s1), 0.5 * (n.t0 + n.t1)));
-      offer(polished.back());
-      if (tiny || inside(polished.back())) {
-        closeOn(polished.back());
-        continue;
-      }
-      // The run left for another basin and the piece may hold one of its own (the wavy patch missed 2 of
-      // 10,000 points by 3.1e-3 and 4.7e-6 when such pieces were closed): its quarters are searched, unless
-      // the Bernstein bound proves it cannot improve by the tolerance. Where minima are not isolated (a
-      // circle of them around a torus's core circle, a sphere's centre or pole) no piece across them is ever
-      // proved, and splitting would go on down to the tolerance: such a piece is closed on the run, as every
-      // leaf was before, and counted (SearchResult::unproved), after kCertSplits levels, or at once when it
-      // touches a pole its run went to (the pieces around a pole double with every level).
-      if (f.tightLowerBound(n) >= out.best.value - tolerance) continue;
-      const Eigen::Vector3d* pole = collapsedCorner(n, forest, 0.5 * tolerance);
-      if (top.certSplits >= kCertSplits || (pole && (*pole - polished.back().point).norm() <= n.ball.radius)) {
-        ++out.unproved;
-        continue;
-      }
+        // Below the cached depth no proof is tried (a piece's forms would die with the query), so a split would
+        // only go deeper; next to a pole the parametrisation degenerates and no piece there is ever proved.
+        const auto nearPole = [&] {
+          const Eigen::Vector3d* pole = collapsedCorner(n, forest, 0.5 * tolerance);
+          return pole && (*pole - h.point).norm() <= n.ball.radius;
+        };
+        if (tiny || !inBox || top.certSplits >= kCertSplits || !f.provesBasins() || n.depth >= kCachedDepth ||
+            nearPole()) {
+          ++out.premised;
+          return true;
+        }
+        return false;
+      };
+      const bool closed = [&] {
+        if (flat) {
+          const auto end = std::find_if(polished.begin(), polished.end(), inside);
+          if (end != polished.end()) return settled(*end);
+          if (f.provesNoMinimum(n, forest, 0.5 * tolerance)) return true;
+        }
+        const RationalBezierPatch& patch = patches[static_cast<std::size_t>(n.patch)];
+        polished.push_back(polish(patch, n.patch, f, 0.5 * (n.s0 + n.s1), 0.5 * (n.t0 + n.t1)));
+        offer(polished.back());
+        if (tiny || inside(polished.back())) return settled(polished.back());
+        // The run left for another basin and the piece may hold one of its own (the wavy patch missed 2 of
+        // 10,000 points by 3.1e-3 and 4.7e-6 when such pieces were closed): searched unless the Bernstein bound
+        // proves it cannot improve by the tolerance.
+        if (f.tightLowerBound(n) >= out.best.value - tolerance) return true;
+        const Eigen::Vector3d* pole = collapsedCorner(n, forest, 0.5 * tolerance);
+        if (top.certSplits >= kCertSplits || (pole && (*pole - polished.back().point).norm() <= n.ball.radius)) {
+          ++out.unproved;
+          return true;
+        }
+        return false;
+      }();
+      if (closed) continue;
     }
     const int certSplits = flat ? top.certSplits + 1 : top.certSplits;
     for (const PatchNode* c : forest.children(n, arena)) {

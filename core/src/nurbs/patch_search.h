@@ -44,6 +44,15 @@ class Objective {
     (void)n, (void)h, (void)curvature;
     return -std::numeric_limits<double>::infinity();
   }
+  /// Proved: value >= this on the node, where h, a point of it on a patch edge where a Newton run ended, is shown
+  /// to hold the node's least value along that edge; minus infinity where not proved.
+  virtual double edgeBound(const PatchNode& n, const PatchForest& forest, const PatchHit& h) const {
+    (void)n, (void)forest, (void)h;
+    return -std::numeric_limits<double>::infinity();
+  }
+  /// Whether curvature/basinBound or edgeBound can ever prove a piece: where not, the search takes a small flat
+  /// piece a Newton run ended in to hold that one minimum, instead of splitting it for a proof that cannot come.
+  virtual bool provesBasins() const { return false; }
   /// A tighter proved bound, dearer: asked only of a node the search would otherwise split.
   virtual double tightLowerBound(const PatchNode& n) const { return lowerBound(n); }
   /// Directions an interior critical point's normal must be parallel to (for the point query: q − S).
@@ -97,7 +106,8 @@ struct SearchResult {
   /// The objective's minimum is at least this: best.value − tolerance, or when the budget ran out the lowest
   /// bound still open (a small flat leaf a Newton run ends in is taken to hold one minimum: see minimise()).
   double lowerBound = -std::numeric_limits<double>::infinity();
-  /// Pieces closed by basinBound (a proof: the objective convex over them).
+  /// Pieces closed by basinBound or edgeBound (a proof: the objective convex over them, or along the patch edge
+  /// their least value is on).
   int convex = 0;
   /// Small flat pieces closed on a Newton run that ended inside them, taken to hold one minimum (unproved).
   int premised = 0;

@@ -199,17 +199,25 @@ const CurvatureForm& curvatureForm(const PatchNode& n, const PatchForest& forest
   return *n.curvature;
 }
 
+namespace {
+
+/// How far a coefficient P − r·Q of entry k may be from the exact one: the form's errors, r's rounding (an ulp of
+/// the larger of q and the centre in each coordinate), and, with `reach`, every point within that distance of q
+/// (it moves each coefficient by at most reach |Q|).
+double coefficientMargin(const CurvatureForm& F, std::size_t k, const Eigen::Vector3d& q, double reach) {
+  const double dr = 2 * kEps * (q.cwiseAbs().maxCoeff() + F.centre.cwiseAbs().maxCoeff()) * std::sqrt(3.0);
+  const double rn = (q - F.centre).norm();
+  return F.errP[k] + (rn + reach) * F.errQ[k] + (dr + reach) * F.sizeQ[k] * (1 + 1e-12) +
+         8 * kEps * (F.sizeP[k] + (rn + reach) * F.sizeQ[k]);
+}
+
+}  // namespace
+
 double leastCurvature(const CurvatureForm& F, const Eigen::Vector3d& q, double reach) {
   if (!F.valid) return 0;
   const Eigen::Vector3d r = q - F.centre;
-  // r is rounded by an ulp of the larger of q and the centre in each coordinate.
-  const double dr = 2 * kEps * (q.cwiseAbs().maxCoeff() + F.centre.cwiseAbs().maxCoeff()) * std::sqrt(3.0);
   const double rn = r.norm();
-  // A point within `reach` of q moves each coefficient P − r·Q by at most reach |Q|.
-  const auto margin = [&](std::size_t k) {
-    return F.errP[k] + (rn + reach) * F.errQ[k] + (dr + reach) * F.sizeQ[k] * (1 + 1e-12) +
-           8 * kEps * (F.sizeP[k] + (rn + reach) * F.sizeQ[k]);
-  };
+  const auto margin = [&](std::size_t k) { return coefficientMargin(F, k, q, reach); };
   double lo[3], hi[3];
   // First the node's middle and the coefficients' spread about it: a few flops, and where the middle is not
   // positive definite the function is not convex there at all.
@@ -253,6 +261,78 @@ double leastCurvature(const CurvatureForm& F, const Eigen::Vector3d& q, double r
   return std::max(0.0, least * (1 - 1e-9) / F.weight4);
 }
 
+namespace {
+
+/// f(h) raised or lowered by the least of g (y − h) + ½ curvature (y − h)² over the node's range of one parameter
+/// (c: 0 for s, 1 for t), with the gradient component known to within h.gradientError (see convexDistanceBound).
+double convexTerm(const PatchNode& n, const PatchHit& h, int c, double curvature) {
+  const double lo = c == 0 ? n.s0 : n.t0, hi = c == 0 ? n.s1 : n.t1, at = c == 0 ? h.s : h.t;
+  const double g = h.gradient[c], e = h.gradientError, width = hi - lo;
+  const double reach = std::max(at - lo, hi - at);
+  const bool outward = (at <= lo && g >= 0) || (at >= hi && g <= 0);
+  if (outward) return -std::max(0.0, e - std::abs(g)) * reach;
+  const double plane = std::min(g * (lo - at), g * (hi - at)) - e * reach;
+  const double gw = (std::abs(g) + e) * width;
+  return curvature > 0 ? std::max(plane, -gw * gw / (2 * curvature)) : plane;
+}
+
+/// The distance whose half square is at least f, less the rounding of the point's evaluation.
+double distanceOf(double f, const Eigen::Vector3d& q, const PatchHit& h) {
+  const double scale = q.cwiseAbs().maxCoeff() + h.point.cwiseAbs().maxCoeff() + h.value;
+  return std::sqrt(2 * std::max(0.0, f)) - kValueUlps * kEps * scale;
+}
+
+/// A proved lower bound on the second derivative of ½|S − q|² along a patch edge the node touches (alongT: the
+/// edge s = const, `last` its s = 1 side; else the edge t = const), over the node's own parameters: the least
+/// coefficient of that entry's line of the form, over the largest W⁴. Zero where not positive.
+double leastAlongEdge(const CurvatureForm& F, const PatchNode& n, const Eigen::Vector3d& q, bool alongT, bool last) {
+  if (!F.valid) return 0;
+  const int p = n.net.degreeU, qd = n.net.degreeV;
+  // Degrees of the ss and tt entries: (4p − 2, 4q) and (4p, 4q − 2), u-major.
+  const std::size_t k = alongT ? 2 : 0;
+  const int rows = alongT ? 4 * p + 1 : 4 * p - 1, cols = alongT ? 4 * qd - 1 : 4 * qd + 1;
+  const Eigen::Vector3d r = q - F.centre;
+  const double *P = F.p[k].data(), *X = F.q[k][0].data(), *Y = F.q[k][1].data(), *Z = F.q[k][2].data();
+  double least = std::numeric_limits<double>::infinity();
+  const int count = alongT ? cols : rows;
+  for (int m = 0; m < count; ++m) {
+    const int i = alongT ? (last ? rows - 1 : 0) : m, j = alongT ? m : (last ? cols - 1 : 0);
+    const std::size_t at = static_cast<std::size_t>(i * cols + j);
+    least = std::min(least, P[at] - r.x() * X[at] - r.y() * Y[at] - r.z() * Z[at]);
+  }
+  least -= coefficientMargin(F, k, q, 0);
+  return least > 0 ? least * (1 - 1e-9) / F.weight4 : 0;
+}
+
+}  // namespace
+
+double edgeDistanceBound(const PatchNode& n, const PatchForest& forest, const Eigen::Vector3d& q, const PatchHit& h,
+                         GradientScratch& g) {
+  const double none = -std::numeric_limits<double>::infinity();
+  if (!std::isfinite(h.gradientError) || h.patch != n.patch) return none;
+  // The patch edges through h that the node touches; +1 where the objective must increase with the parameter
+  // (h on its 0 side), −1 where it must decrease.
+  const int outS = (h.s == 0 && n.s0 == 0) ? 1 : (h.s == 1 && n.s1 == 1) ? -1 : 0;
+  const int outT = (h.t == 0 && n.t0 == 0) ? 1 : (h.t == 1 && n.t1 == 1) ? -1 : 0;
+  if (outS == 0 && outT == 0) return none;
+  if (!(h.s >= n.s0 && h.s <= n.s1 && h.t >= n.t0 && h.t <= n.t1)) return none;
+  const PointGradientSigns signs = pointGradientSigns(n, forest, q, g);
+  // The component across an edge keeps its outward sign over the node: every point of it is farther than the
+  // point of the edge it moves to along that parameter.
+  const bool acrossS = outS != 0 && signs.whole[0] == outS, acrossT = outT != 0 && signs.whole[1] == outT;
+  if (!acrossS && !acrossT) return none;
+  // At a corner, the other component keeps its outward sign along that edge: the corner h is the nearest.
+  const double f = 0.5 * h.value * h.value;
+  if ((acrossS && outT != 0 && signs.along[outS > 0 ? 0 : 1] == outT) ||
+      (acrossT && outS != 0 && signs.along[outT > 0 ? 2 : 3] == outS))
+    return distanceOf(f, q, h);
+  // Along the edge: convex there, so above its tangent at h, or its parabola's least value.
+  const bool alongT = acrossS;
+  const double curvature = leastAlongEdge(curvatureForm(n, forest), n, q, alongT, alongT ? outS < 0 : outT < 0);
+  if (!(curvature > 0)) return none;
+  return distanceOf(f + convexTerm(n, h, alongT ? 1 : 0, curvature), q, h);
+}
+
 double convexDistanceBound(const PatchNode& n, const Eigen::Vector3d& q, const PatchHit& h, double curvature) {
   if (!std::isfinite(h.gradientError) || !(curvature > 0)) return -std::numeric_limits<double>::infinity();
   // Convex on the box: f(y) >= f(h) + g·(y − h) + ½ curvature |y − h|² (y in the node's own parameters, where
@@ -260,18 +340,8 @@ double convexDistanceBound(const PatchNode& n, const Eigen::Vector3d& q, const P
   // (the run stopped there), the term is not negative once |g| exceeds its error, else at least −(error − |g|)·
   // reach; otherwise the plane's least value at a face, or the parabola's least value −(g w)² / (2 curvature),
   // whichever is higher. g is known to within gradientError.
-  const double lo[2] = {n.s0, n.t0}, hi[2] = {n.s1, n.t1}, at[2] = {h.s, h.t};
-  double f = 0.5 * h.value * h.value;
-  for (int c = 0; c < 2; ++c) {
-    const double g = h.gradient[c], e = h.gradientError, width = hi[c] - lo[c];
-    const double reach = std::max(at[c] - lo[c], hi[c] - at[c]);
-    const bool outward = (at[c] <= lo[c] && g >= 0) || (at[c] >= hi[c] && g <= 0);
-    const double plane = std::min(g * (lo[c] - at[c]), g * (hi[c] - at[c])) - e * reach;
-    const double gw = (std::abs(g) + e) * width;
-    f += outward ? -std::max(0.0, e - std::abs(g)) * reach : std::max(plane, -gw * gw / (2 * curvature));
-  }
-  const double scale = q.cwiseAbs().maxCoeff() + h.point.cwiseAbs().maxCoeff() + h.value;
-  return std::sqrt(2 * std::max(0.0, f)) - kValueUlps * kEps * scale;
+  const double f = 0.5 * h.value * h.value + convexTerm(n, h, 0, curvature) + convexTerm(n, h, 1, curvature);
+  return distanceOf(f, q, h);
 }
 
 }  // namespace unidist::nurbs

@@ -11,6 +11,7 @@
 // Coefficients bound the polynomial on the piece, so their least values bound the Hessian's entries.
 #pragma once
 
+#include "nurbs/gradient_sign.h"
 #include "nurbs/patch_search.h"
 
 #include <array>
@@ -49,5 +50,14 @@ double leastCurvature(const CurvatureForm& form, const Eigen::Vector3d& q, doubl
 /// Proved: |S − q| >= this over the node, given leastCurvature(form, q) = curvature > 0 and h a point of the
 /// node's patch inside the node's box with its gradient (a Newton run's end).
 double convexDistanceBound(const PatchNode& n, const Eigen::Vector3d& q, const PatchHit& h, double curvature);
+
+/// Proved: |S − q| >= this over the node, where h (a Newton run's end, with its gradient) lies on a patch edge
+/// the node touches: the gradient points out of the patch across that edge throughout the node, so the node's
+/// least distance is on the edge, and there it is convex along the edge (at a patch corner: both components
+/// point out, and h is the node's nearest point). Minus infinity where this is not proved. The search closes
+/// with it the pieces whose nearest point lies on the patch boundary, where the distance is seldom convex over
+/// the whole piece.
+double edgeDistanceBound(const PatchNode& n, const PatchForest& forest, const Eigen::Vector3d& q, const PatchHit& h,
+                         GradientScratch& g);
 
 }  // namespace unidist::nurbs
