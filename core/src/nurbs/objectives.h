@@ -5,6 +5,7 @@
 #include "nurbs/gradient_sign.h"
 #include "nurbs/patch_search.h"
 #include "nurbs/point_convexity.h"
+#include "nurbs/support_bound.h"
 
 #include <algorithm>
 #include <limits>
@@ -36,6 +37,12 @@ class PointObjective final : public Objective {
   }
   double tightLowerBound(const PatchNode& n) const override {
     return std::max(lowerBound(n), bernsteinDistanceBound(n.net, q_, scratch_));
+  }
+  // The nearest distance certified by concavity of γW² − |X − qW|² over the piece (support_bound.h): exact where
+  // the piece stays outside a sphere about q that touches it, which at a pole the curvature form cannot show.
+  double closingBound(const PatchNode& n) const override {
+    const DistanceExtreme e = certifyDistanceExtreme(n.net, q_, false, true);
+    return std::max(tightLowerBound(n), e.proved ? e.value : 0.0);
   }
   Cone criticalDirections(const BoundingSphere& b) const override { return coneTowards(q_, b.center, b.radius); }
   void derivatives(const SurfaceDerivatives& d, Eigen::Vector2d& g, Eigen::Matrix2d& H) const override {

@@ -161,6 +161,7 @@ SearchResult minimise(const PatchForest& forest, const std::vector<RationalBezie
     }
   };
 
+  double closedBound = std::numeric_limits<double>::infinity();  // of the pieces closed without a proof
   std::pmr::vector<Open> heap(&memory);
   heap.reserve(kExpectedOpen);
   std::priority_queue<Open, std::pmr::vector<Open>, std::greater<Open>> open(std::greater<Open>(), std::move(heap));
@@ -239,6 +240,11 @@ SearchResult minimise(const PatchForest& forest, const std::vector<RationalBezie
         return std::any_of(n.corners.begin(), n.corners.end(),
                            [&](const Eigen::Vector3d& c) { return (c - m.point).norm() <= tolerance; });
       };
+      // A piece closed without a proof that its run found its minimum keeps the result's lower bound honest: at
+      // most its own proved bound (the Bernstein one, exact where the distance is constant across it).
+      const auto keepClosedBound = [&] {
+        if (f.provesBasins()) closedBound = std::min(closedBound, std::max(top.lower, f.closingBound(n)));
+      };
       const auto settled = [&](const PatchHit& h) {
         const double enough = out.best.value - tolerance;
         const bool inBox = h.s >= n.s0 && h.s <= n.s1 && h.t >= n.t0 && h.t <= n.t1;
@@ -257,6 +263,7 @@ SearchResult minimise(const PatchForest& forest, const std::vector<RationalBezie
         if (tiny || !inBox || top.certSplits >= kCertSplits || !f.provesBasins() || n.depth >= kCachedDepth ||
             nearPole()) {
           ++out.premised;
+          keepClosedBound();
           return true;
         }
         return false;
@@ -278,6 +285,7 @@ SearchResult minimise(const PatchForest& forest, const std::vector<RationalBezie
         const Eigen::Vector3d* pole = collapsedCorner(n, forest, 0.5 * tolerance);
         if (top.certSplits >= kCertSplits || (pole && (*pole - polished.back().point).norm() <= n.ball.radius)) {
           ++out.unproved;
+          keepClosedBound();
           return true;
         }
         return false;
@@ -295,7 +303,7 @@ SearchResult minimise(const PatchForest& forest, const std::vector<RationalBezie
   }
   for (const PatchHit& h : hits)
     if (h.value <= out.best.value + tieTolerance) out.ties.push_back(h);
-  if (!out.exhausted) out.lowerBound = out.best.value - tolerance;
+  if (!out.exhausted) out.lowerBound = std::min(out.best.value - tolerance, closedBound);
   return out;
 }
 

@@ -50,6 +50,9 @@ class Objective {
     (void)n, (void)forest, (void)h;
     return -std::numeric_limits<double>::infinity();
   }
+  /// The tightest proved bound to be had, dearest: asked only of a piece closed without a proof that a Newton run
+  /// found its minimum, whose bound then limits the search's.
+  virtual double closingBound(const PatchNode& n) const { return tightLowerBound(n); }
   /// Whether curvature/basinBound or edgeBound can ever prove a piece: where not, the search takes a small flat
   /// piece a Newton run ended in to hold that one minimum, instead of splitting it for a proof that cannot come.
   virtual bool provesBasins() const { return false; }
