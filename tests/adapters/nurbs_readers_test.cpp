@@ -167,6 +167,28 @@ TEST_F(NurbsReaders, IgesTorusWithOtherDelimiters) {
   EXPECT_NEAR(m.closestPoint(Eigen::Vector3d(1, 0, 0)).signedDistance, -0.25, 1e-12);
 }
 
+// A parameter range narrower than the knot domain restricts the surface to it (here a band of the moved sphere:
+// half its longitudes, its middle latitudes), an open model; one reaching outside the domain is an error.
+TEST_F(NurbsReaders, IgesParameterRangeRestrictsTheSurface) {
+  const std::string good = readText(kFixtures / "sphere_moved.igs");
+  const std::string bandPath = write("band.igs", replaceOnce(good, "1,0,0,1,0,1,0,1;   ", "1,0,0,1,0,.5,.3,.7;"));
+  const NurbsModel& whole = asNurbs(loadModel((kFixtures / "sphere_moved.igs").string()));
+  const auto model = loadModel(bandPath);
+  const NurbsModel& m = asNurbs(model);
+  EXPECT_FALSE(m.isSolid());
+  const NurbsSurface& s = m.surfaces()[0];
+  EXPECT_EQ(s.uMin(), 0);
+  EXPECT_EQ(s.uMax(), 0.5);
+  EXPECT_EQ(s.vMin(), 0.3);
+  EXPECT_EQ(s.vMax(), 0.7);
+  for (double u : {0.0, 0.1, 0.37, 0.5})
+    for (double v : {0.3, 0.45, 0.7})
+      EXPECT_LT((s.evaluate(u, v) - whole.surfaces()[0].evaluate(u, v)).norm(), 1e-13) << u << " " << v;
+  EXPECT_NEAR(m.closestPoint(Eigen::Vector3d(1, 2, 3)).signedDistance, 1, 1e-12);  // the centre
+  expectError("wide.igs", replaceOnce(good, "1,0,0,1,0,1,0,1;   ", "1,0,0,1,0,1,0,2;   "), ":", "knot domain");
+  expectError("empty.igs", replaceOnce(good, "1,0,0,1,0,1,0,1;   ", "1,0,0,1,.5,.5,0,1; "), ":", "u range");
+}
+
 /// Replaces columns [from, from + text.size()) of physical line `line` (from 1) of an IGES text.
 std::string patchColumns(std::string text, int line, std::size_t from, const std::string& replacement) {
   std::size_t at = 0;

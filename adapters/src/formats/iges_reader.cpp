@@ -9,7 +9,8 @@
 // count. Parameter data is columns 1–64 of those P lines; strings are Hollerith (nHtext), numbers may use D
 // exponents. Entity 128: K1 K2 M1 M2 PROP1..5, knots, weights, control points, parameter range.
 // Not modelled: trimming (entities 142/143/144/510 are ignored, so a trimmed face is read untrimmed — the file's
-// surfaces must be the model), and a parameter range narrower than the knot domain (an error).
+// surfaces must be the model). A parameter range narrower than the knot domain restricts the surface to it
+// (NurbsSurface::restricted); one reaching outside it is an error.
 // The model is a solid when its surfaces close up (NurbsModel's closedness test), an open surface otherwise.
 // Every problem is an InputError "<path>:<line>: ..." (physical line of the file, from 1).
 #include "formats/readers.h"
@@ -281,10 +282,14 @@ class IgesParser {
     for (double& r : range) r = number(next("the parameter range"), "parameter range");
     try {
       NurbsSurface s(m1, m2, std::move(knotsU), std::move(knotsV), std::move(net));
+      // The range selects the part of the surface the entity stands for: the whole knot domain (to a CAD
+      // system's rounding, 1e-9 of its extent) or less of it.
       const double su = 1e-9 * (std::abs(s.uMax()) + std::abs(s.uMin()) + 1), sv = 1e-9 * (std::abs(s.vMax()) + std::abs(s.vMin()) + 1);
-      if (range[0] > s.uMin() + su || range[1] < s.uMax() - su || range[2] > s.vMin() + sv || range[3] < s.vMax() - sv)
-        throw InputError("parameter range narrower than the knot domain is not supported");
-      return s;
+      const auto snap = [](double x, double end, double slack) { return std::abs(x - end) <= slack ? end : x; };
+      const double u0 = snap(range[0], s.uMin(), su), u1 = snap(range[1], s.uMax(), su);
+      const double v0 = snap(range[2], s.vMin(), sv), v1 = snap(range[3], s.vMax(), sv);
+      if (u0 == s.uMin() && u1 == s.uMax() && v0 == s.vMin() && v1 == s.vMax()) return s;
+      return s.restricted(u0, u1, v0, v1);
     } catch (const InputError& err) {
       failAt(line, "entity 128 (directory entry " + std::to_string(de) + "): " + err.what());
     }

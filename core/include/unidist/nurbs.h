@@ -121,6 +121,10 @@ class NurbsSurface {
   Eigen::Vector3d evaluate(double u, double v) const { return derivatives(u, v).point; }
   /// The same surface as rational Bézier patches (knot insertion), in u-major order.
   std::vector<RationalBezierPatch> bezierPatches() const;
+  /// The part of the surface over [u0, u1] x [v0, v1] (knot insertion; parameters keep their values), as CAD
+  /// files restrict a surface by a parameter range. Throws InputError unless the range is finite, non-empty and
+  /// within the knot domain.
+  NurbsSurface restricted(double u0, double u1, double v0, double v1) const;
 
  private:
   int p_, q_, nu_ = 0, nv_ = 0;

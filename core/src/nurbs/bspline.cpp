@@ -108,4 +108,22 @@ BezierSegments toBezierSegments(std::vector<double> knots, int p, std::vector<Ei
   return out;
 }
 
+void restrictCurve(std::vector<double>& knots, int p, std::vector<Eigen::Vector4d>& points, double a, double b) {
+  const auto n = [&] { return static_cast<int>(points.size()); };
+  const double end = knots[static_cast<std::size_t>(n())];
+  for (double u : {a, b}) {
+    const int have = static_cast<int>(std::count(knots.begin(), knots.end(), u));
+    for (int m = have; m < p; ++m) insertKnot(knots, points, p, u >= end ? findSpan(knots, p, n(), end) : findSpan(knots, p, n(), u), u);
+  }
+  // With a of multiplicity >= p, point (last index of a) − p is the curve's point at a and starts the curve over
+  // [a, ...]; with b's, point (first index of b) − 1 ends it.
+  const auto lastA = std::upper_bound(knots.begin(), knots.end(), a) - knots.begin() - 1;
+  const auto firstB = std::lower_bound(knots.begin(), knots.end(), b) - knots.begin();
+  std::vector<double> kept(static_cast<std::size_t>(p + 1), a);
+  kept.insert(kept.end(), knots.begin() + lastA + 1, knots.begin() + firstB);
+  kept.insert(kept.end(), static_cast<std::size_t>(p + 1), b);
+  points = std::vector<Eigen::Vector4d>(points.begin() + (lastA - p), points.begin() + firstB);
+  knots = std::move(kept);
+}
+
 }  // namespace unidist::nurbs

@@ -55,4 +55,8 @@ struct BezierSegments {
 /// Inserts knots (Boehm) until every distinct knot of the domain [t_p, t_n] has multiplicity at least p.
 BezierSegments toBezierSegments(std::vector<double> knots, int p, std::vector<Eigen::Vector4d> points);
 
+/// The same curve over [a, b] (t_p <= a < b <= t_n): a and b inserted (Boehm) up to multiplicity p, the points
+/// and knots beyond them dropped and the new ends clamped (p + 1 equal knots). Parameters keep their values.
+void restrictCurve(std::vector<double>& knots, int p, std::vector<Eigen::Vector4d>& points, double a, double b);
+
 }  // namespace unidist::nurbs

@@ -180,6 +180,40 @@ std::vector<RationalBezierPatch> NurbsSurface::bezierPatches() const {
   return out;
 }
 
+NurbsSurface NurbsSurface::restricted(double u0, double u1, double v0, double v1) const {
+  const auto check = [](double a, double b, double lo, double hi, const char* name) {
+    if (!(std::isfinite(a) && std::isfinite(b) && a < b && a >= lo && b <= hi))
+      throw InputError(std::string("NURBS surface: the ") + name + " range [" + std::to_string(a) + ", " +
+                       std::to_string(b) + "] is empty or leaves the knot domain [" + std::to_string(lo) + ", " +
+                       std::to_string(hi) + "]");
+  };
+  check(u0, u1, uMin(), uMax(), "u");
+  check(v0, v1, vMin(), vMax(), "v");
+  // Along u for every v column, then along v for every row of the result.
+  std::vector<double> knotsU;
+  std::vector<std::vector<Eigen::Vector4d>> columns;
+  for (int j = 0; j < nv_; ++j) {
+    std::vector<double> knots = knotsU_;
+    std::vector<Eigen::Vector4d> column;
+    for (int i = 0; i < nu_; ++i) column.push_back(homogeneous_[static_cast<std::size_t>(i * nv_ + j)]);
+    nurbs::restrictCurve(knots, p_, column, u0, u1);
+    knotsU = std::move(knots);
+    columns.push_back(std::move(column));
+  }
+  std::vector<double> knotsV;
+  std::vector<std::vector<Eigen::Vector4d>> net;
+  for (std::size_t i = 0; i < columns.front().size(); ++i) {
+    std::vector<double> knots = knotsV_;
+    std::vector<Eigen::Vector4d> row;
+    for (const auto& column : columns) row.push_back(column[i]);
+    nurbs::restrictCurve(knots, q_, row, v0, v1);
+    knotsV = std::move(knots);
+    for (Eigen::Vector4d& h : row) h.head<3>() /= h[3];  // the constructor takes Euclidean points
+    net.push_back(std::move(row));
+  }
+  return NurbsSurface(p_, q_, std::move(knotsU), std::move(knotsV), std::move(net));
+}
+
 Eigen::Vector2d RationalBezierPatch::surfaceParam(double s, double t) const {
   return {u0 + (u1 - u0) * nurbs::mobius(stretchU, s), v0 + (v1 - v0) * nurbs::mobius(stretchV, t)};
 }
