@@ -172,7 +172,8 @@ TEST_F(NurbsReaders, IgesTorusWithOtherDelimiters) {
 TEST_F(NurbsReaders, IgesParameterRangeRestrictsTheSurface) {
   const std::string good = readText(kFixtures / "sphere_moved.igs");
   const std::string bandPath = write("band.igs", replaceOnce(good, "1,0,0,1,0,1,0,1;   ", "1,0,0,1,0,.5,.3,.7;"));
-  const NurbsModel& whole = asNurbs(loadModel((kFixtures / "sphere_moved.igs").string()));
+  const auto wholeModel = loadModel((kFixtures / "sphere_moved.igs").string());
+  const NurbsModel& whole = asNurbs(wholeModel);
   const auto model = loadModel(bandPath);
   const NurbsModel& m = asNurbs(model);
   EXPECT_FALSE(m.isSolid());
