@@ -241,7 +241,7 @@ SearchResult minimise(const PatchForest& forest, const std::vector<RationalBezie
                            [&](const Eigen::Vector3d& c) { return (c - m.point).norm() <= tolerance; });
       };
       // A piece closed without a proof that its run found its minimum keeps the result's lower bound honest: at
-      // most its own proved bound (the Bernstein one, exact where the distance is constant across it).
+      // most its own proved bound (Objective::closingBound).
       const auto keepClosedBound = [&] {
         if (f.provesBasins()) closedBound = std::min(closedBound, std::max(top.lower, f.closingBound(n)));
       };

@@ -106,13 +106,15 @@ struct SearchResult {
   std::vector<PatchHit> ties;  ///< every hit within tieTolerance of the best (including it)
   int nodes = 0;
   bool exhausted = false;
-  /// The objective's minimum is at least this: best.value − tolerance, or when the budget ran out the lowest
-  /// bound still open (a small flat leaf a Newton run ends in is taken to hold one minimum: see minimise()).
+  /// The objective's minimum is at least this, proved: best.value − tolerance, or less where a piece was closed
+  /// without a proof that its run found its minimum (its closingBound), or when the budget ran out the lowest
+  /// bound still open.
   double lowerBound = -std::numeric_limits<double>::infinity();
   /// Pieces closed by basinBound or edgeBound (a proof: the objective convex over them, or along the patch edge
   /// their least value is on).
   int convex = 0;
-  /// Small flat pieces closed on a Newton run that ended inside them, taken to hold one minimum (unproved).
+  /// Small flat pieces closed on a Newton run that ended inside them without a proof that it found their minimum
+  /// (next to a pole, or after kCertSplits levels): their closingBound caps lowerBound.
   int premised = 0;
   /// Pieces closed on a Newton run without a proof that they hold no other minimum (see minimise()).
   int unproved = 0;
