@@ -39,10 +39,11 @@ class PointObjective final : public Objective {
     return std::max(lowerBound(n), bernsteinDistanceBound(n.net, q_, scratch_));
   }
   // The nearest distance certified by concavity of γW² − |X − qW|² over the piece (support_bound.h): exact where
-  // the piece stays outside a sphere about q that touches it, which at a pole the curvature form cannot show.
+  // the piece stays outside a sphere about q that touches it, which at a pole the curvature form cannot show;
+  // elsewhere it is the same coefficient-ratio bound as tightLowerBound's (computed once, there).
   double closingBound(const PatchNode& n) const override {
     const DistanceExtreme e = certifyDistanceExtreme(n.net, q_, false, true);
-    return std::max(tightLowerBound(n), e.proved ? e.value : 0.0);
+    return e.proved ? std::max(lowerBound(n), e.value) : tightLowerBound(n);
   }
   Cone criticalDirections(const BoundingSphere& b) const override { return coneTowards(q_, b.center, b.radius); }
   void derivatives(const SurfaceDerivatives& d, Eigen::Vector2d& g, Eigen::Matrix2d& H) const override {

@@ -245,6 +245,11 @@ SearchResult minimise(const PatchForest& forest, const std::vector<RationalBezie
       const auto keepClosedBound = [&] {
         if (f.provesBasins()) closedBound = std::min(closedBound, std::max(top.lower, f.closingBound(n)));
       };
+      // A run that went to a pole the piece touches: there the chart degenerates and no piece is ever proved.
+      const auto atPole = [&](const PatchHit& h) {
+        const Eigen::Vector3d* pole = collapsedCorner(n, forest, 0.5 * tolerance);
+        return pole && (*pole - h.point).norm() <= n.ball.radius;
+      };
       const auto settled = [&](const PatchHit& h) {
         const double enough = out.best.value - tolerance;
         const bool inBox = h.s >= n.s0 && h.s <= n.s1 && h.t >= n.t0 && h.t <= n.t1;
@@ -255,13 +260,9 @@ SearchResult minimise(const PatchForest& forest, const std::vector<RationalBezie
           return true;
         }
         // Below the cached depth no proof is tried (a piece's forms would die with the query), so a split would
-        // only go deeper; next to a pole the parametrisation degenerates and no piece there is ever proved.
-        const auto nearPole = [&] {
-          const Eigen::Vector3d* pole = collapsedCorner(n, forest, 0.5 * tolerance);
-          return pole && (*pole - h.point).norm() <= n.ball.radius;
-        };
+        // only go deeper.
         if (tiny || !inBox || top.certSplits >= kCertSplits || !f.provesBasins() || n.depth >= kCachedDepth ||
-            nearPole()) {
+            atPole(h)) {
           ++out.premised;
           keepClosedBound();
           return true;
@@ -282,8 +283,7 @@ SearchResult minimise(const PatchForest& forest, const std::vector<RationalBezie
         // 10,000 points by 3.1e-3 and 4.7e-6 when such pieces were closed): searched unless the Bernstein bound
         // proves it cannot improve by the tolerance.
         if (f.tightLowerBound(n) >= out.best.value - tolerance) return true;
-        const Eigen::Vector3d* pole = collapsedCorner(n, forest, 0.5 * tolerance);
-        if (top.certSplits >= kCertSplits || (pole && (*pole - polished.back().point).norm() <= n.ball.radius)) {
+        if (top.certSplits >= kCertSplits || atPole(polished.back())) {
           ++out.unproved;
           keepClosedBound();
           return true;
