@@ -7,6 +7,8 @@
 // of the slab planes, onto the line where two meet, or a point where three meet, so the minimum over those
 // candidates that lie in no polytope's interior is exact.
 #include "core/mesh_fixtures.h"
+#include "nurbs_fixtures.h"
+#include "unidist/nurbs.h"
 #include "unidist/distance.h"
 #include "unidist/primitives.h"
 
@@ -248,6 +250,27 @@ TEST(TranslationDepth, ScalesWithTheModel) {
     EXPECT_NEAR(r.distance, -0.08 * k, 1e-8 * k) << "scale " << k;
     EXPECT_LE(r.lowerBound, -0.08 * k * (1 - 1e-12));
     EXPECT_GE(r.upperBound, -0.08 * k * (1 + 1e-12));
+  }
+}
+
+// A NURBS torus sunk 1e-4 into a table, slightly rolled: where the depth's escape is known only from the
+// supporting planes (no contact found on the way out), the witness is the pair of support points that touch:
+// the torus's lowest point and the table under it, not the table's support point (a corner, 2 from the torus).
+TEST(TranslationDepth, SupportPlaneWitnessLiesOnBothSurfaces) {
+  const unidist::NurbsModel torus({nurbs_fixtures::torusSurface(1, 0.25)}, true);
+  const unidist::Box table(Vec(2, 2, 0.5));
+  const Eigen::Isometry3d X_table = pose(Vec(0, 0, -0.5));
+  for (int i = 0; i <= 8; ++i) {
+    SCOPED_TRACE(i);
+    Eigen::Isometry3d X = pose(Vec(1e-5 * i, 0, 0.25 - 1e-4 + 1e-5 * (i % 3)));
+    X.linear() = (Eigen::AngleAxisd(0.3, Vec::UnitZ()) * Eigen::AngleAxisd(1e-6 * i, Vec::UnitX())).toRotationMatrix();
+    unidist::DistanceOptions o;
+    o.tolerance = 1e-4;
+    const DistanceResult r = unidist::distance(torus, X, table, X_table, o);
+    EXPECT_NEAR(r.distance, -(1e-4 - 1e-5 * (i % 3)), 1e-4 + 1.25e-5);  // the tolerance, and the roll (1e-6 × i)
+    // On the surfaces to the tolerance: one point is a support point, the other is it moved by the depth.
+    EXPECT_LE(std::abs(torus.closestPoint(X.inverse() * r.pointA).signedDistance), o.tolerance);
+    EXPECT_LE(std::abs(table.closestPoint(X_table.inverse() * r.pointB).signedDistance), o.tolerance);
   }
 }
 

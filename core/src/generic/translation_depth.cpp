@@ -310,9 +310,15 @@ DistanceResult translationalDepth(const PosedModel& a, const PosedModel& b, cons
     r.pointA = best.pointA;
     r.pointB = best.pointA - best.length * best.direction;
   } else {
-    // Only a supporting-plane escape is known: B's support point, and where it lands on A's support plane.
-    r.pointB = b.supportWorld(-best.direction);
-    r.pointA = r.pointB + best.length * best.direction;
+    // Only a supporting-plane escape is known: the two support points touch the planes, but only one of them is
+    // the contact: of B's support point and where it lands on A's support plane, or of A's and where it lands on
+    // B's, the pair whose landing point lies on the other surface (a ball on a table: the ball's bottom).
+    const Eigen::Vector3d move = best.length * best.direction;
+    const Eigen::Vector3d onB = b.supportWorld(-best.direction), onA = a.supportWorld(best.direction);
+    const bool fromA = std::abs(b.closestWorld(onA - move).signedDistance) <
+                       std::abs(a.closestWorld(onB + move).signedDistance);
+    r.pointA = fromA ? onA : Eigen::Vector3d(onB + move);
+    r.pointB = fromA ? Eigen::Vector3d(onA - move) : onB;
   }
   r.lowerBound = -best.length;
   r.upperBound = -lower;

@@ -199,7 +199,7 @@ const Eigen::Vector3d* collapsedCorner(const PatchNode& n, const PatchForest& fo
 const GradientForm& gradientForm(const PatchNode& n, const PatchForest& forest) {
   std::call_once(n.gradientOnce, [&n, &forest] {
     n.gradient = makeForm(n);
-    if (n.depth <= kCachedDepth) forest.bytes += formBytes(*n.gradient);  // deeper nodes die with their query
+    if (n.kept) forest.bytes += formBytes(*n.gradient);  // deeper nodes die with their query
   });
   return *n.gradient;
 }

@@ -19,6 +19,7 @@ constexpr int kMaxDepth = 40;          // beyond this a node is a leaf whatever 
 constexpr double kLeafFraction = 0.5;  // leaf: radius below this fraction of the objective's scale...
 constexpr double kLeafAngle = 0.5;    // ...and a normal cone narrower than this (rad): Newton converges there
 constexpr int kNewtonSteps = 60;
+constexpr int kNearPole = 4;        // levels below a pole's strip that still try proofs below the cached depth
 constexpr int kCertSplits = 3;        // levels a piece that fails its certificate is split before it is trusted
 // The search's buffers: sized for an ordinary query (tens of nodes open, a few hits and runs).
 constexpr std::size_t kStackBytes = 12 * 1024;
@@ -55,6 +56,18 @@ void keepEvaluation(const Objective& f, const SurfaceDerivatives& d, PatchHit& h
   hit.gradientError = f.gradientError(d);
 }
 
+// Steps::AlongGradient: far from the surface (a probe 100 sizes away) the distance varies along it by less than
+// its own rounding within 1e-4 of the minimum on a ball of radius 150; a step that leaves the value within these
+// ulps and halves the gradient is taken.
+constexpr double kValueUlps = 4;
+
+bool smallerGradient(const Objective& f, const SurfaceDerivatives& at, const Eigen::Vector2d& than) {
+  Eigen::Vector2d g;
+  Eigen::Matrix2d H;
+  f.derivatives(at, g, H);
+  return g.norm() < 0.5 * than.norm();
+}
+
 }  // namespace
 
 PatchHit pointAt(const RationalBezierPatch& patch, int index, const Objective& f, double s, double t) {
@@ -64,7 +77,8 @@ PatchHit pointAt(const RationalBezierPatch& patch, int index, const Objective& f
   return hit;
 }
 
-PatchHit polish(const RationalBezierPatch& patch, int index, const Objective& f, double s, double t, const ParamBox& box) {
+PatchHit polish(const RationalBezierPatch& patch, int index, const Objective& f, double s, double t, const ParamBox& box,
+                Steps steps) {
   PatchHit hit;
   hit.patch = index;
   const Eigen::Vector2d lo(box.s0, box.t0), hi(box.s1, box.t1);
@@ -115,7 +129,8 @@ PatchHit polish(const RationalBezierPatch& patch, int index, const Objective& f,
       if (trial == x) break;
       const SurfaceDerivatives dt = patch.derivatives(trial[0], trial[1]);
       const double vt = f.value(dt.point);
-      if (vt < value) {
+      if (vt < value || (steps == Steps::AlongGradient && vt <= value + kValueUlps * std::numeric_limits<double>::epsilon() * std::abs(value) &&
+                         smallerGradient(f, dt, g))) {
         accepted = true;
         const double moved = (trial - x).cwiseAbs().maxCoeff();
         x = trial;
@@ -135,8 +150,9 @@ PatchHit polish(const RationalBezierPatch& patch, int index, const Objective& f,
 }
 
 SearchResult minimise(const PatchForest& forest, const std::vector<RationalBezierPatch>& patches, const Objective& f,
-                      double tolerance, double tieTolerance, int skip, int only) {
+                      double requested, double tieTolerance, int skip, int only) {
   SearchResult out;
+  double tolerance = requested;  // raised to the objective's resolution once the seed is known (below)
   const auto excluded = [skip, only](int patch) { return patch == skip || (only >= 0 && patch != only); };
   out.best.value = std::numeric_limits<double>::infinity();
   // The query's buffers on the stack, spilling to the heap only in a long search.
@@ -198,6 +214,8 @@ SearchResult minimise(const PatchForest& forest, const std::vector<RationalBezie
     polished.push_back(polish(patches[static_cast<std::size_t>(at.patch)], at.patch, f, at.s, at.t));
     offer(polished.back());
   }
+  if (out.best.value < std::numeric_limits<double>::infinity())
+    tolerance = std::max(tolerance, f.resolution(out.best.value, forest.maxTerms));
   f.startBounds(start, out.best.value - tolerance, values.data());
   for (std::size_t k = 0; k < start.nodes.size(); ++k)
     if (values[k] < out.best.value - tolerance && !excluded(start.nodes[k]->patch)) open.push({values[k], start.nodes[k], 0});
@@ -218,8 +236,11 @@ SearchResult minimise(const PatchForest& forest, const std::vector<RationalBezie
     // except around the best point, whose neighbours hold the ties a caller may ask for (the point query no
     // longer does: NurbsModel finds the faces at an edge itself). Shallow pieces are left to the balls: pruning
     // them early measured slower overall (the depth search's witnesses change), and an ordinary query is done
-    // before this depth.
-    if (n.depth >= kTightBoundDepth && (out.best.point - n.ball.center).norm() > n.ball.radius + tieTolerance &&
+    // before this depth. Next to a pole the pieces around the best point are bounded too (unless ties are asked
+    // for): far from the model every one of them ties with it to rounding, and would be split on.
+    if (n.depth >= kTightBoundDepth &&
+        ((out.best.point - n.ball.center).norm() > n.ball.radius + tieTolerance ||
+         (tieTolerance == 0 && n.fromPole <= kNearPole)) &&
         f.tightLowerBound(n) >= out.best.value - tolerance)
       continue;
     const bool flat = !n.normal.all && n.normal.angle <= kLeafAngle && n.ball.radius <= kLeafFraction * f.leafScale(n.ball);
@@ -250,19 +271,23 @@ SearchResult minimise(const PatchForest& forest, const std::vector<RationalBezie
         const Eigen::Vector3d* pole = collapsedCorner(n, forest, 0.5 * tolerance);
         return pole && (*pole - h.point).norm() <= n.ball.radius;
       };
+      // Next to a pole the pieces are far below the cached depth; their proofs are made per query there.
+      const bool nearPole = n.fromPole <= kNearPole;
       const auto settled = [&](const PatchHit& h) {
         const double enough = out.best.value - tolerance;
         const bool inBox = h.s >= n.s0 && h.s <= n.s1 && h.t >= n.t0 && h.t <= n.t1;
         const bool onEdge = h.s == 0 || h.s == 1 || h.t == 0 || h.t == 1;
-        if (n.depth <= kCachedDepth && inBox &&
+        if ((n.kept || nearPole) && inBox &&
             ((onEdge && f.edgeBound(n, forest, h) >= enough) || f.basinBound(n, h, f.curvature(n, forest)) >= enough)) {
           ++out.convex;
           return true;
         }
-        // Below the cached depth no proof is tried (a piece's forms would die with the query), so a split would
-        // only go deeper.
-        if (tiny || !inBox || top.certSplits >= kCertSplits || !f.provesBasins() || n.depth >= kCachedDepth ||
-            atPole(h)) {
+        // A strip along a pole is split on (the next strip of the pole's chain: one per level) until its bound
+        // prunes it or it is tiny. Below the cached depth no proof is tried (a piece's forms would die with the
+        // query), so a split would only go deeper.
+        if (!tiny && n.pole && f.provesBasins()) return false;
+        if (tiny || !inBox || top.certSplits >= kCertSplits || !f.provesBasins() ||
+            (!PatchForest::keepsChildren(n) && !nearPole) || atPole(h)) {
           ++out.premised;
           keepClosedBound();
           return true;
@@ -283,6 +308,7 @@ SearchResult minimise(const PatchForest& forest, const std::vector<RationalBezie
         // 10,000 points by 3.1e-3 and 4.7e-6 when such pieces were closed): searched unless the Bernstein bound
         // proves it cannot improve by the tolerance.
         if (f.tightLowerBound(n) >= out.best.value - tolerance) return true;
+        if (n.pole && f.provesBasins()) return false;
         if (top.certSplits >= kCertSplits || atPole(polished.back())) {
           ++out.unproved;
           keepClosedBound();
@@ -292,7 +318,7 @@ SearchResult minimise(const PatchForest& forest, const std::vector<RationalBezie
       }();
       if (closed) continue;
     }
-    const int certSplits = flat ? top.certSplits + 1 : top.certSplits;
+    const int certSplits = flat && !n.pole ? top.certSplits + 1 : top.certSplits;
     for (const PatchNode* c : forest.children(n, arena)) {
       // A child bounded above the best by more than the tie tolerance holds neither a better point nor a tie.
       const double lb = f.lowerBound(*c, out.best.value + tieTolerance);
@@ -301,9 +327,56 @@ SearchResult minimise(const PatchForest& forest, const std::vector<RationalBezie
       if (lb < out.best.value - tolerance) open.push({lb, c, certSplits});
     }
   }
+  // The best may be a corner or a Newton run's end short of the minimum within the tolerance (a tangent contact
+  // is flat there: a distance within 5e-11 of the least can be 1e-4 away from its point on a ball of radius 150);
+  // a last run from it (unless it is where one ended) gives the point itself, where the engines want contacts
+  // not to wander. A last run's end within rounding of the best value is the better answer where its gradient
+  // is smaller: far away the values tie to rounding around the minimum, and only the gradient tells the point.
+  const double searched = out.best.value;  // what the search's bounds were proved against
+  const auto refine = [&](const PatchHit& h) {
+    const double rounding = kValueUlps * std::numeric_limits<double>::epsilon() * std::abs(out.best.value);
+    if (h.value < out.best.value || h.value > out.best.value + rounding) return offer(h);
+    if (!(out.best.gradientError < std::numeric_limits<double>::infinity()) ||
+        h.gradient.norm() < out.best.gradient.norm()) {
+      hits.push_back(h);
+      out.best = h;
+    }
+  };
+  if (out.best.value < std::numeric_limits<double>::infinity()) {
+    const PatchHit from = out.best;
+    const RationalBezierPatch& patch = patches[static_cast<std::size_t>(from.patch)];
+    const bool ranHere = std::any_of(polished.begin(), polished.end(), [&](const PatchHit& h) {
+      return h.patch == from.patch && h.s == from.s && h.t == from.t;
+    });
+    if (!ranHere) refine(polish(patch, from.patch, f, from.s, from.t, {}, Steps::AlongGradient));
+    // Where the tolerance was raised to the rounding (far from the model) every run stopped at its plateau: each
+    // goes on along the gradient (the best may be on a patch edge, the minimum in the patch beside it).
+    if (tolerance > requested)
+      for (std::size_t k = 0, runs = polished.size(); k < runs; ++k) {
+        const PatchHit end = polished[k];
+        refine(polish(patches[static_cast<std::size_t>(end.patch)], end.patch, f, end.s, end.t, {},
+                      Steps::AlongGradient));
+      }
+    // Next to a pole a run cannot leave its patch for the neighbour around the pole that holds the minimum (nor,
+    // at the pole, pick a direction: its parameter there is any): runs from a ring about the pole in every patch
+    // meeting there.
+    constexpr double kRing = 1e-3;  // parameter distance of the ring from the pole
+    const std::array<bool, 4>& collapsed = forest.collapsedEdges[static_cast<std::size_t>(from.patch)];
+    const std::array<double, 4> away{from.s, 1 - from.s, from.t, 1 - from.t};
+    for (int e = 0; e < 4; ++e) {
+      if (!collapsed[static_cast<std::size_t>(e)] || away[static_cast<std::size_t>(e)] > kRing) continue;
+      for (const auto& [other, edge] : forest.poleOf(from.patch, e).edges) {
+        if (excluded(other)) continue;
+        const double across = edge % 2 == 0 ? kRing : 1 - kRing;
+        for (double along : {0.125, 0.375, 0.625, 0.875})
+          refine(polish(patches[static_cast<std::size_t>(other)], other, f, edge < 2 ? across : along,
+                        edge < 2 ? along : across, {}, Steps::AlongGradient));
+      }
+    }
+  }
   for (const PatchHit& h : hits)
     if (h.value <= out.best.value + tieTolerance) out.ties.push_back(h);
-  if (!out.exhausted) out.lowerBound = std::min(out.best.value - tolerance, closedBound);
+  if (!out.exhausted) out.lowerBound = std::min(std::min(searched, out.best.value) - tolerance, closedBound);
   return out;
 }
 

@@ -56,6 +56,12 @@ class Objective {
   /// Whether curvature/basinBound or edgeBound can ever prove a piece: where not, the search takes a small flat
   /// piece a Newton run ended in to hold that one minimum, instead of splitting it for a proof that cannot come.
   virtual bool provesBasins() const { return false; }
+  /// The least tolerance its proved bounds can honour where the objective is near `value`, on patches of at most
+  /// `terms` control points (their rounding): the search never splits for less.
+  virtual double resolution(double value, std::size_t terms) const {
+    (void)value, (void)terms;
+    return 0;
+  }
   /// A tighter proved bound, dearer: asked only of a node the search would otherwise split.
   virtual double tightLowerBound(const PatchNode& n) const { return lowerBound(n); }
   /// Directions an interior critical point's normal must be parallel to (for the point query: q − S).
@@ -133,8 +139,13 @@ struct ParamBox {
 /// The patch's point at (s, t) with the objective's value and gradient there.
 PatchHit pointAt(const RationalBezierPatch& patch, int index, const Objective& f, double s, double t);
 
+/// How a Newton step is accepted: where it lowers the value, or also where it keeps the value within a few
+/// ulps and halves the gradient (the last runs of a search: far from the surface the value is flat to rounding
+/// near its minimum, and only the gradient shows the way; taken in every run it slowed the depth search 70×).
+enum class Steps { Descent, AlongGradient };
+
 /// Box-constrained Newton on patch from (s, t) (clamped into the box); returns the best point reached.
 PatchHit polish(const RationalBezierPatch& patch, int index, const Objective& f, double s, double t,
-                const ParamBox& box = {});
+                const ParamBox& box = {}, Steps steps = Steps::Descent);
 
 }  // namespace unidist::nurbs

@@ -65,11 +65,16 @@ struct FrameBox {
   Eigen::Vector3d lo = Eigen::Vector3d::Zero(), hi = Eigen::Vector3d::Zero();
 };
 
+constexpr int kFarFromPole = 1 << 20;
+
 struct PatchNode {
   RationalBezierPatch net;             // the subpatch, local parameters of its own
   std::vector<Eigen::Vector3d> points;  // its Euclidean control points: their hull holds it (positive weights)
   int patch = 0, depth = 0;
   double s0 = 0, s1 = 1, t0 = 0, t1 = 1;  // its box in the patch's local parameters
+  bool pole = false;  // it touches a patch edge collapsed to a point (PatchForest::children splits it as a strip)
+  bool kept = false;  // owned by the forest (a root or a cached child), not by one query's arena
+  int fromPole = kFarFromPole;  // levels below the last strip along a pole it descends from (0: a strip itself)
   BoundingSphere ball;
   FrameBox box;
   Cone cu, cv, normal;
@@ -84,6 +89,9 @@ struct PatchNode {
 };
 
 constexpr int kCachedDepth = 7;
+/// Along a pole the chain of strips (one node per level, with its three neighbours) is kept deeper: the proofs
+/// next to a pole need the forms of pieces far smaller than the cached depth's.
+constexpr int kPoleCachedDepth = 20;
 
 /// A value per node made once during one search (a separator's certified extreme), looked up by the node.
 class NodeMemo {
@@ -112,14 +120,32 @@ bool mayHoldCritical(const PatchNode& n, const Cone& towards, bool corners);
 
 struct PatchForest {
   std::vector<std::unique_ptr<PatchNode>> roots;
+  /// Per patch, its edges s = 0, s = 1, t = 0, t = 1 collapsed to a point (a pole).
+  std::vector<std::array<bool, 4>> collapsedEdges;
+  std::size_t maxTerms = 0;  // the most control points of any patch
+  /// The distinct points the collapsed edges collapse to, each with the edges (patch, 0..3 as above) meeting there.
+  struct Pole {
+    Eigen::Vector3d point;
+    std::vector<std::pair<int, int>> edges;
+  };
+  std::vector<Pole> poles;
+  /// The pole patch `patch`'s collapsed edge `edge` collapses to.
+  const Pole& poleOf(int patch, int edge) const;
   mutable std::atomic<std::size_t> nodes{0}, bytes{0};
   mutable std::once_flag startOnce;  // the search's starting cut (start_set.h), made on first use
   mutable std::shared_ptr<const StartSet> start;
 
   explicit PatchForest(const std::vector<RationalBezierPatch>& patches);
-  /// The four children of n (quadrants in u-major order). Cached ones are built once; deeper ones go to arena.
+  /// The four children of n: its quadrants in u-major order; a node along a collapsed edge (a pole) is cut into
+  /// the quarter of it along the pole (a strip spanning its whole width, the next strip of the pole's chain),
+  /// the next quarter, and the far half's two halves, so that only one node per level touches the pole where
+  /// quadrants would double them. Cached ones are built once; deeper ones go to arena.
   std::array<const PatchNode*, 4> children(const PatchNode& n,
                                            std::vector<std::unique_ptr<PatchNode>>& arena) const;
+  /// Are n's children kept by the forest (cached) rather than made per query?
+  static bool keepsChildren(const PatchNode& n) {
+    return n.depth < kCachedDepth || (n.pole && n.depth < kPoleCachedDepth);
+  }
 };
 
 /// A node for `net` covering [s0,s1] x [t0,t1] of patch `patch`: ball, cones and corners computed.

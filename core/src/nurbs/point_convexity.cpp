@@ -194,7 +194,7 @@ bool convexAtMiddle(const PatchNode& n, const Eigen::Vector3d& q) {
 const CurvatureForm& curvatureForm(const PatchNode& n, const PatchForest& forest) {
   std::call_once(n.curvatureOnce, [&n, &forest] {
     n.curvature = makeForm(n);
-    if (n.depth <= kCachedDepth) forest.bytes += formBytes(*n.curvature);  // deeper nodes die with their query
+    if (n.kept) forest.bytes += formBytes(*n.curvature);  // deeper nodes die with their query
   });
   return *n.curvature;
 }

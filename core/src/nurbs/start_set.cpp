@@ -22,8 +22,9 @@ std::shared_ptr<const StartSet> makeStartSet(const PatchForest& forest) {
     const std::size_t first = out->samples.size();
     for (int i = 0; i < side; ++i)
       for (int j = 0; j < side; ++j) out->samples.push_back({root->patch, double(i) / cells, double(j) / cells});
-    points.resize(out->samples.size());
-    // Depth first down to the cut; every corner of every cut node is a grid point.
+    // The grid is evaluated on the patch itself: next to a pole the cut's nodes are strips, not grid cells.
+    for (std::size_t k = first; k < out->samples.size(); ++k)
+      points.push_back(root->net.evaluate(out->samples[k].s, out->samples[k].t));
     std::vector<const PatchNode*> stack{root.get()};
     while (!stack.empty()) {
       const PatchNode* n = stack.back();
@@ -33,10 +34,6 @@ std::shared_ptr<const StartSet> makeStartSet(const PatchForest& forest) {
         continue;
       }
       out->nodes.push_back(n);
-      const int i0 = static_cast<int>(n->s0 * cells + 0.5), i1 = static_cast<int>(n->s1 * cells + 0.5);
-      const int j0 = static_cast<int>(n->t0 * cells + 0.5), j1 = static_cast<int>(n->t1 * cells + 0.5);
-      const int at[4] = {i0 * side + j0, i1 * side + j0, i0 * side + j1, i1 * side + j1};
-      for (int k = 0; k < 4; ++k) points[first + static_cast<std::size_t>(at[k])] = n->corners[static_cast<std::size_t>(k)];
     }
   }
   for (const Eigen::Vector3d& p : points) {
