@@ -437,7 +437,11 @@ std::string NurbsModel::describe() const {
 std::size_t NurbsModel::patchTreeBytes() const {
   std::size_t roots = 0;  // the roots' nets are the patches' (counted with them); their points are the tree's
   for (const auto& root : forest_->roots) roots += sizeof(nurbs::PatchNode) + root->points.capacity() * sizeof(Eigen::Vector3d);
-  return forest_->bytes.load() + roots;
+  // The per-patch tables made with the roots: collapsed edges, poles, distinct corners.
+  std::size_t tables = forest_->collapsedEdges.capacity() * sizeof(std::array<bool, 4>) +
+                       forest_->distinctCorners.capacity() * sizeof(nurbs::PatchForest::Corner);
+  for (const nurbs::PatchForest::Pole& p : forest_->poles) tables += sizeof(p) + p.edges.capacity() * sizeof(p.edges[0]);
+  return forest_->bytes.load() + roots + tables;
 }
 
 std::vector<StructureReport> NurbsModel::structures() const {

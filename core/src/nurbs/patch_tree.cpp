@@ -360,6 +360,31 @@ std::array<Piece, 4> piecesOf(const PatchNode& n, const std::array<bool, 4>& col
 
 }  // namespace
 
+namespace {
+
+/// The distinct corners of the roots, first occurrences in (root, corner) order (PatchForest::distinctCorners).
+std::vector<PatchForest::Corner> distinctCornersOf(const std::vector<std::unique_ptr<PatchNode>>& roots) {
+  std::vector<PatchForest::Corner> all;
+  for (std::size_t k = 0; k < roots.size(); ++k)
+    for (int i = 0; i < 4; ++i) all.push_back({roots[k]->corners[static_cast<std::size_t>(i)], static_cast<int>(k), i});
+  const auto byPoint = [](const PatchForest::Corner& a, const PatchForest::Corner& b) {
+    if (a.point.x() != b.point.x()) return a.point.x() < b.point.x();
+    if (a.point.y() != b.point.y()) return a.point.y() < b.point.y();
+    if (a.point.z() != b.point.z()) return a.point.z() < b.point.z();
+    return std::make_pair(a.root, a.corner) < std::make_pair(b.root, b.corner);
+  };
+  std::sort(all.begin(), all.end(), byPoint);
+  std::vector<PatchForest::Corner> out;
+  for (const PatchForest::Corner& c : all)
+    if (out.empty() || out.back().point != c.point) out.push_back(c);  // the first of equal points comes first
+  std::sort(out.begin(), out.end(), [](const PatchForest::Corner& a, const PatchForest::Corner& b) {
+    return std::make_pair(a.root, a.corner) < std::make_pair(b.root, b.corner);
+  });
+  return out;
+}
+
+}  // namespace
+
 PatchForest::PatchForest(const std::vector<RationalBezierPatch>& patches) {
   for (std::size_t k = 0; k < patches.size(); ++k) {
     roots.push_back(makeNode(patches[k], static_cast<int>(k), 0, 0, 1, 0, 1));
@@ -371,6 +396,7 @@ PatchForest::PatchForest(const std::vector<RationalBezierPatch>& patches) {
     if (roots.back()->pole) roots.back()->fromPole = 0;
   }
   nodes = roots.size();
+  distinctCorners = distinctCornersOf(roots);
   double size = 0;
   for (const auto& r : roots) size = std::max(size, r->ball.radius);
   constexpr std::array<int, 4> kCornerOfEdge{0, 1, 0, 2};  // a corner on each edge s = 0, s = 1, t = 0, t = 1

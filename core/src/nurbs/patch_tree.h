@@ -131,6 +131,13 @@ struct PatchForest {
   std::vector<Pole> poles;
   /// The pole patch `patch`'s collapsed edge `edge` collapses to.
   const Pole& poleOf(int patch, int edge) const;
+  /// The patches' corners, each distinct point once (patches meet at their corners: a torus's 64 are 16 points),
+  /// with its first occurrence in (root, corner) order, sorted by that.
+  struct Corner {
+    Eigen::Vector3d point;
+    int root, corner;
+  };
+  std::vector<Corner> distinctCorners;
   mutable std::atomic<std::size_t> nodes{0}, bytes{0};
   mutable std::once_flag startOnce;  // the search's starting cut (start_set.h), made on first use
   mutable std::shared_ptr<const StartSet> start;

@@ -345,26 +345,31 @@ class PairSearch {
   }
 
   /// The nearest pair of patch corners, then Newton from it: a realised upper bound before the search starts.
+  /// Over the distinct corners (a torus's 64 are 16 points); of equally near pairs, the first in (patch of A,
+  /// patch of B, corner of A, corner of B) order.
   void seed() {
     static const double kCornerS[4] = {0, 1, 0, 1}, kCornerT[4] = {0, 0, 1, 1};
+    const auto& cornersA = a_.forest().distinctCorners;
+    const auto& cornersOfB = b_.forest().distinctCorners;
+    std::vector<Eigen::Vector3d> cornersB;  // in A's frame, mapped once
+    cornersB.reserve(cornersOfB.size());
+    for (const auto& c : cornersOfB) cornersB.push_back(X_AB_ * c.point);
     double nearest = std::numeric_limits<double>::infinity();
-    Eigen::Vector4d x0 = Eigen::Vector4d::Zero();
-    int pa = -1, pb = -1;
-    std::vector<std::array<Eigen::Vector3d, 4>> cornersB;  // B's corners in A's frame, mapped once
-    for (const auto& rb : b_.forest().roots)
-      cornersB.push_back({X_AB_ * rb->corners[0], X_AB_ * rb->corners[1], X_AB_ * rb->corners[2], X_AB_ * rb->corners[3]});
-    for (const auto& ra : a_.forest().roots)
-      for (std::size_t kb = 0; kb < cornersB.size(); ++kb)
-        for (std::size_t i = 0; i < 4; ++i)
-          for (std::size_t j = 0; j < 4; ++j)
-            if (const double d = (cornersB[kb][j] - ra->corners[i]).squaredNorm(); d < nearest) {
-              const auto& rb = b_.forest().roots[kb];
-              nearest = d;
-              x0 = Eigen::Vector4d(kCornerS[i], kCornerT[i], kCornerS[j], kCornerT[j]);
-              pa = ra->patch;
-              pb = rb->patch;
-            }
-    if (pa >= 0) polish(pa, pb, x0);
+    std::array<int, 4> first{};  // (patch A, patch B, corner A, corner B) of the nearest pair
+    for (const auto& ca : cornersA)
+      for (std::size_t kb = 0; kb < cornersB.size(); ++kb) {
+        const double d = (cornersB[kb] - ca.point).squaredNorm();
+        if (d > nearest) continue;
+        const std::array<int, 4> key{ca.root, cornersOfB[kb].root, ca.corner, cornersOfB[kb].corner};
+        if (d < nearest || key < first) {
+          nearest = d;
+          first = key;
+        }
+      }
+    if (!(nearest < std::numeric_limits<double>::infinity())) return;
+    const int pa = a_.forest().roots[static_cast<std::size_t>(first[0])]->patch;
+    const int pb = b_.forest().roots[static_cast<std::size_t>(first[1])]->patch;
+    polish(pa, pb, Eigen::Vector4d(kCornerS[first[2]], kCornerT[first[2]], kCornerS[first[3]], kCornerT[first[3]]));
   }
 
   static nurbs::Cone rotated(nurbs::Cone c, const Eigen::Matrix3d& R) {
