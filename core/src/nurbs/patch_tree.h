@@ -54,6 +54,8 @@ BoundingSphere ballOfPoints(const std::vector<Eigen::Vector3d>& points);
 std::vector<Eigen::Vector3d> derivativeCoefficients(const RationalBezierPatch& patch, bool transpose);
 /// Cones of Su and Sv over the whole patch, from the Bernstein coefficients of the rational derivative numerators.
 void tangentCones(const RationalBezierPatch& patch, Cone& cu, Cone& cv);
+/// The part of the patch over [a, b] of local parameter s (direction 0) or t (direction 1), by de Casteljau.
+RationalBezierPatch restrict(const RationalBezierPatch& patch, int direction, double a, double b);
 /// The subpatch over [s0,s1] x [t0,t1] of the local parameters.
 RationalBezierPatch subpatch(const RationalBezierPatch& patch, double s0, double s1, double t0, double t1);
 
