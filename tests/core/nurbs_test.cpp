@@ -218,7 +218,7 @@ TEST(NurbsTree, MemoryReportCountsNodesStartSetAndForms) {
   for (const StructureReport& r : m->structures())
     if (r.name == "patch-tree") reported = r.bytes;
   // The per-patch tables made with the roots (the torus has no poles).
-  const std::size_t tables = m->forest().collapsedEdges.capacity() * sizeof(std::array<bool, 4>) +
+  const std::size_t tables = m->forest().poleOfEdge.capacity() * sizeof(std::array<int, 4>) +
                              m->forest().distinctCorners.capacity() * sizeof(nurbs::PatchForest::Corner);
   EXPECT_EQ(reported, nodes + startBytes + forms + tables);
 }

@@ -55,9 +55,15 @@ void squaredDistanceForm(const RationalBezierPatch& patch, const Eigen::Vector3d
   }
 }
 
+/// bernsteinDistanceBound's allowance for rounding, on a patch of `terms` control points within `magnitude` of
+/// q: each coefficient is a mean of up to `terms` products, each exact to a few ulps of magnitude².
+inline double bernsteinRounding(std::size_t terms, double magnitude, const Eigen::Vector3d& q) {
+  return 8.0 * static_cast<double>(terms) * std::numeric_limits<double>::epsilon() * magnitude +
+         1e-15 * q.cwiseAbs().maxCoeff();
+}
+
 /// Proved: |S(s,t) − q| >= this on the whole patch (rounding allowance included).
 inline double bernsteinDistanceBound(const RationalBezierPatch& patch, const Eigen::Vector3d& q, BernsteinScratch& w) {
-  const int n = patch.degreeU, m = patch.degreeV;
   w.y.resize(patch.net.size());
   squaredDistanceForm(patch, q, w.y.data(), w.A, w.W);
   double magnitude = 0;
@@ -67,9 +73,7 @@ inline double bernsteinDistanceBound(const RationalBezierPatch& patch, const Eig
     if (!(w.W[kl] > 0)) return 0;  // not a positive-weight patch: no bound
     least = std::min(least, w.A[kl] / w.W[kl]);
   }
-  // Each coefficient is a mean of up to (n+1)(m+1) products, each exact to a few ulps of magnitude².
-  const double rounding = 8.0 * (n + 1) * (m + 1) * std::numeric_limits<double>::epsilon() * magnitude;
-  return std::max(0.0, std::sqrt(std::max(0.0, least)) - rounding - 1e-15 * q.cwiseAbs().maxCoeff());
+  return std::max(0.0, std::sqrt(std::max(0.0, least)) - bernsteinRounding(patch.net.size(), magnitude, q));
 }
 
 }  // namespace unidist::nurbs

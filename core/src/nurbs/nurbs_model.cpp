@@ -437,8 +437,8 @@ std::string NurbsModel::describe() const {
 std::size_t NurbsModel::patchTreeBytes() const {
   std::size_t roots = 0;  // the roots' nets are the patches' (counted with them); their points are the tree's
   for (const auto& root : forest_->roots) roots += sizeof(nurbs::PatchNode) + root->points.capacity() * sizeof(Eigen::Vector3d);
-  // The per-patch tables made with the roots: collapsed edges, poles, distinct corners.
-  std::size_t tables = forest_->collapsedEdges.capacity() * sizeof(std::array<bool, 4>) +
+  // The per-patch tables made with the roots: poles, distinct corners.
+  std::size_t tables = forest_->poleOfEdge.capacity() * sizeof(std::array<int, 4>) +
                        forest_->distinctCorners.capacity() * sizeof(nurbs::PatchForest::Corner);
   for (const nurbs::PatchForest::Pole& p : forest_->poles) tables += sizeof(p) + p.edges.capacity() * sizeof(p.edges[0]);
   return forest_->bytes.load() + roots + tables;

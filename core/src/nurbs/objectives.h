@@ -40,10 +40,7 @@ class PointObjective final : public Objective {
   }
   // Twice bernsteinDistanceBound's rounding allowance: far from the model (tens of its sizes) a tolerance of
   // 1e-13 × size is below it, and the pieces around the nearest point, all tied to rounding, would be split on.
-  double resolution(double value, std::size_t terms) const override {
-    return 2 * (8.0 * static_cast<double>(terms) * std::numeric_limits<double>::epsilon() * value +
-                1e-15 * q_.cwiseAbs().maxCoeff());
-  }
+  double resolution(double value, std::size_t terms) const override { return 2 * bernsteinRounding(terms, value, q_); }
   // The nearest distance certified by concavity of γW² − |X − qW|² over the piece (support_bound.h): exact where
   // the piece stays outside a sphere about q that touches it, which at a pole the curvature form cannot show;
   // elsewhere it is the same coefficient-ratio bound as tightLowerBound's (computed once, there).

@@ -3,7 +3,6 @@
 #include "nurbs/patch_tree.h"
 
 #include <algorithm>
-#include <stdexcept>
 
 namespace unidist::nurbs {
 namespace {
@@ -33,10 +32,10 @@ struct Piece {
   bool pole;
 };
 
-/// The four pieces of n (see PatchForest::children), in n's local parameters.
-std::array<Piece, 4> piecesOf(const PatchNode& n, const std::array<bool, 4>& collapsed) {
-  const bool sLow = n.s0 == 0 && collapsed[0], sHigh = n.s1 == 1 && collapsed[1];
-  const bool tLow = n.t0 == 0 && collapsed[2], tHigh = n.t1 == 1 && collapsed[3];
+/// The four pieces of n (see PatchForest::children), in n's local parameters; poleOfEdge: its patch's.
+std::array<Piece, 4> piecesOf(const PatchNode& n, const std::array<int, 4>& poleOfEdge) {
+  const bool sLow = n.s0 == 0 && poleOfEdge[0] >= 0, sHigh = n.s1 == 1 && poleOfEdge[1] >= 0;
+  const bool tLow = n.t0 == 0 && poleOfEdge[2] >= 0, tHigh = n.t1 == 1 && poleOfEdge[3] >= 0;
   std::array<Piece, 4> out;
   if (!sLow && !sHigh && !tLow && !tHigh) {
     for (int k = 0; k < 4; ++k) {
@@ -46,28 +45,21 @@ std::array<Piece, 4> piecesOf(const PatchNode& n, const std::array<bool, 4>& col
     }
     return out;
   }
-  // Along s (the pole at s = 0, s = 1 or both): the strip(s) along the pole keep the node's whole t range.
+  // Across the pole (s when the pole is at s = 0, s = 1 or both): the strip(s) along it keep the node's whole
+  // range along it; the far half (or the middle, between two poles) is halved along it.
   const bool alongS = sLow || sHigh;
   const bool low = alongS ? sLow : tLow, high = alongS ? sHigh : tHigh;
-  std::array<std::array<double, 2>, 4> cut;  // the pieces' intervals across the pole, then along it
-  std::array<std::array<double, 2>, 4> along;
-  std::array<bool, 4> pole;
-  if (low && high) {
-    cut = {{{0, 0.25}, {0.75, 1}, {0.25, 0.75}, {0.25, 0.75}}};
-    along = {{{0, 1}, {0, 1}, {0, 0.5}, {0.5, 1}}};
-    pole = {true, true, false, false};
-  } else if (low) {
-    cut = {{{0, 0.25}, {0.25, 0.5}, {0.5, 1}, {0.5, 1}}};
-    along = {{{0, 1}, {0, 1}, {0, 0.5}, {0.5, 1}}};
-    pole = {true, false, false, false};
-  } else {
-    cut = {{{0.75, 1}, {0.5, 0.75}, {0, 0.5}, {0, 0.5}}};
-    along = {{{0, 1}, {0, 1}, {0, 0.5}, {0.5, 1}}};
-    pole = {true, false, false, false};
+  using Intervals = std::array<std::array<double, 2>, 4>;
+  constexpr Intervals kBothPoles{{{0, 0.25}, {0.75, 1}, {0.25, 0.75}, {0.25, 0.75}}};
+  constexpr Intervals kLowPole{{{0, 0.25}, {0.25, 0.5}, {0.5, 1}, {0.5, 1}}};
+  constexpr Intervals kHighPole{{{0.75, 1}, {0.5, 0.75}, {0, 0.5}, {0, 0.5}}};
+  constexpr Intervals kAlong{{{0, 1}, {0, 1}, {0, 0.5}, {0.5, 1}}};
+  const Intervals& across = low && high ? kBothPoles : low ? kLowPole : kHighPole;
+  for (std::size_t k = 0; k < 4; ++k) {
+    const bool pole = k == 0 || (k == 1 && low && high);
+    out[k] = alongS ? Piece{across[k][0], across[k][1], kAlong[k][0], kAlong[k][1], pole}
+                    : Piece{kAlong[k][0], kAlong[k][1], across[k][0], across[k][1], pole};
   }
-  for (std::size_t k = 0; k < 4; ++k)
-    out[k] = alongS ? Piece{cut[k][0], cut[k][1], along[k][0], along[k][1], pole[k]}
-                    : Piece{along[k][0], along[k][1], cut[k][0], cut[k][1], pole[k]};
   return out;
 }
 
@@ -103,45 +95,38 @@ PatchForest::PatchForest(const std::vector<RationalBezierPatch>& patches) {
     roots.push_back(makeNode(patches[k], static_cast<int>(k), 0, 0, 1, 0, 1));
     roots.back()->kept = true;
     maxTerms = std::max(maxTerms, patches[k].net.size());
-    collapsedEdges.push_back(collapsedEdgesOf(*roots.back()));
-    const std::array<bool, 4>& c = collapsedEdges.back();
-    roots.back()->pole = c[0] || c[1] || c[2] || c[3];
-    if (roots.back()->pole) roots.back()->fromPole = 0;
   }
   nodes = roots.size();
   distinctCorners = distinctCornersOf(roots);
   double size = 0;
   for (const auto& r : roots) size = std::max(size, r->ball.radius);
   constexpr std::array<int, 4> kCornerOfEdge{0, 1, 0, 2};  // a corner on each edge s = 0, s = 1, t = 0, t = 1
-  for (std::size_t k = 0; k < roots.size(); ++k)
+  for (std::size_t k = 0; k < roots.size(); ++k) {
+    const std::array<bool, 4> collapsed = collapsedEdgesOf(*roots[k]);
+    std::array<int, 4>& at = poleOfEdge.emplace_back(std::array<int, 4>{-1, -1, -1, -1});
     for (int e = 0; e < 4; ++e) {
-      if (!collapsedEdges[k][static_cast<std::size_t>(e)]) continue;
-      const auto corner = static_cast<std::size_t>(kCornerOfEdge[static_cast<std::size_t>(e)]);
-      const Eigen::Vector3d& at = roots[k]->corners[corner];
+      if (!collapsed[static_cast<std::size_t>(e)]) continue;
+      const Eigen::Vector3d& point = roots[k]->corners[static_cast<std::size_t>(kCornerOfEdge[static_cast<std::size_t>(e)])];
       auto same = std::find_if(poles.begin(), poles.end(),
-                               [&](const Pole& p) { return (p.point - at).norm() <= kCollapsedEdge * size; });
-      if (same == poles.end()) same = poles.insert(poles.end(), Pole{at, {}});
+                               [&](const Pole& p) { return (p.point - point).norm() <= kCollapsedEdge * size; });
+      if (same == poles.end()) same = poles.insert(poles.end(), Pole{point, {}});
       same->edges.emplace_back(static_cast<int>(k), e);
+      at[static_cast<std::size_t>(e)] = static_cast<int>(same - poles.begin());
+      roots[k]->fromPole = 0;
     }
-}
-
-const PatchForest::Pole& PatchForest::poleOf(int patch, int edge) const {
-  for (const Pole& p : poles)
-    if (std::find(p.edges.begin(), p.edges.end(), std::make_pair(patch, edge)) != p.edges.end()) return p;
-  throw std::logic_error("PatchForest::poleOf: not a collapsed edge");
+  }
 }
 
 std::array<const PatchNode*, 4> PatchForest::children(const PatchNode& n,
                                                       std::vector<std::unique_ptr<PatchNode>>& arena) const {
   auto make = [&](std::array<std::unique_ptr<PatchNode>, 4>& out) {
-    const std::array<Piece, 4> pieces = piecesOf(n, collapsedEdges[static_cast<std::size_t>(n.patch)]);
+    const std::array<Piece, 4> pieces = piecesOf(n, poleOfEdge[static_cast<std::size_t>(n.patch)]);
     const double ws = n.s1 - n.s0, wt = n.t1 - n.t0;
     for (std::size_t k = 0; k < 4; ++k) {
       const Piece& c = pieces[k];
       RationalBezierPatch piece = restrict(restrict(n.net, 0, c.a0, c.a1), 1, c.b0, c.b1);
       out[k] = makeNode(std::move(piece), n.patch, n.depth + 1, n.s0 + c.a0 * ws, n.s0 + c.a1 * ws, n.t0 + c.b0 * wt,
                         n.t0 + c.b1 * wt);
-      out[k]->pole = c.pole;
       out[k]->fromPole = c.pole ? 0 : std::min(n.fromPole + 1, kFarFromPole);
     }
   };

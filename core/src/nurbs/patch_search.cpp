@@ -271,8 +271,11 @@ SearchResult minimise(const PatchForest& forest, const std::vector<RationalBezie
         const Eigen::Vector3d* pole = collapsedCorner(n, forest, 0.5 * tolerance);
         return pole && (*pole - h.point).norm() <= n.ball.radius;
       };
-      // Next to a pole the pieces are far below the cached depth; their proofs are made per query there.
+      // Next to a pole the pieces are far below the cached depth; their proofs are made per query there. A strip
+      // along a pole is split on (the next strip of the pole's chain: one per level) until its bound prunes it or
+      // it is tiny, never closed on the premise.
       const bool nearPole = n.fromPole <= kNearPole;
+      const bool splitStrip = n.onPole() && !tiny && f.provesBasins();
       const auto settled = [&](const PatchHit& h) {
         const double enough = out.best.value - tolerance;
         const bool inBox = h.s >= n.s0 && h.s <= n.s1 && h.t >= n.t0 && h.t <= n.t1;
@@ -282,10 +285,9 @@ SearchResult minimise(const PatchForest& forest, const std::vector<RationalBezie
           ++out.convex;
           return true;
         }
-        // A strip along a pole is split on (the next strip of the pole's chain: one per level) until its bound
-        // prunes it or it is tiny. Below the cached depth no proof is tried (a piece's forms would die with the
-        // query), so a split would only go deeper.
-        if (!tiny && n.pole && f.provesBasins()) return false;
+        // Below the cached depth no proof is tried (a piece's forms would die with the query), so a split would
+        // only go deeper.
+        if (splitStrip) return false;
         if (tiny || !inBox || top.certSplits >= kCertSplits || !f.provesBasins() ||
             (!PatchForest::keepsChildren(n) && !nearPole) || atPole(h)) {
           ++out.premised;
@@ -308,7 +310,7 @@ SearchResult minimise(const PatchForest& forest, const std::vector<RationalBezie
         // 10,000 points by 3.1e-3 and 4.7e-6 when such pieces were closed): searched unless the Bernstein bound
         // proves it cannot improve by the tolerance.
         if (f.tightLowerBound(n) >= out.best.value - tolerance) return true;
-        if (n.pole && f.provesBasins()) return false;
+        if (splitStrip) return false;
         if (top.certSplits >= kCertSplits || atPole(polished.back())) {
           ++out.unproved;
           keepClosedBound();
@@ -318,7 +320,7 @@ SearchResult minimise(const PatchForest& forest, const std::vector<RationalBezie
       }();
       if (closed) continue;
     }
-    const int certSplits = flat && !n.pole ? top.certSplits + 1 : top.certSplits;
+    const int certSplits = flat && !n.onPole() ? top.certSplits + 1 : top.certSplits;
     for (const PatchNode* c : forest.children(n, arena)) {
       // A child bounded above the best by more than the tie tolerance holds neither a better point nor a tie.
       const double lb = f.lowerBound(*c, out.best.value + tieTolerance);
@@ -361,11 +363,11 @@ SearchResult minimise(const PatchForest& forest, const std::vector<RationalBezie
     // at the pole, pick a direction: its parameter there is any): runs from a ring about the pole in every patch
     // meeting there.
     constexpr double kRing = 1e-3;  // parameter distance of the ring from the pole
-    const std::array<bool, 4>& collapsed = forest.collapsedEdges[static_cast<std::size_t>(from.patch)];
+    const std::array<int, 4>& poleOfEdge = forest.poleOfEdge[static_cast<std::size_t>(from.patch)];
     const std::array<double, 4> away{from.s, 1 - from.s, from.t, 1 - from.t};
-    for (int e = 0; e < 4; ++e) {
-      if (!collapsed[static_cast<std::size_t>(e)] || away[static_cast<std::size_t>(e)] > kRing) continue;
-      for (const auto& [other, edge] : forest.poleOf(from.patch, e).edges) {
+    for (std::size_t e = 0; e < 4; ++e) {
+      if (poleOfEdge[e] < 0 || away[e] > kRing) continue;
+      for (const auto& [other, edge] : forest.poles[static_cast<std::size_t>(poleOfEdge[e])].edges) {
         if (excluded(other)) continue;
         const double across = edge % 2 == 0 ? kRing : 1 - kRing;
         for (double along : {0.125, 0.375, 0.625, 0.875})

@@ -74,9 +74,10 @@ struct PatchNode {
   std::vector<Eigen::Vector3d> points;  // its Euclidean control points: their hull holds it (positive weights)
   int patch = 0, depth = 0;
   double s0 = 0, s1 = 1, t0 = 0, t1 = 1;  // its box in the patch's local parameters
-  bool pole = false;  // it touches a patch edge collapsed to a point (PatchForest::children splits it as a strip)
   bool kept = false;  // owned by the forest (a root or a cached child), not by one query's arena
   int fromPole = kFarFromPole;  // levels below the last strip along a pole it descends from (0: a strip itself)
+  /// It touches a patch edge collapsed to a point (PatchForest::children splits it as a strip).
+  bool onPole() const { return fromPole == 0; }
   BoundingSphere ball;
   FrameBox box;
   Cone cu, cv, normal;
@@ -122,17 +123,16 @@ bool mayHoldCritical(const PatchNode& n, const Cone& towards, bool corners);
 
 struct PatchForest {
   std::vector<std::unique_ptr<PatchNode>> roots;
-  /// Per patch, its edges s = 0, s = 1, t = 0, t = 1 collapsed to a point (a pole).
-  std::vector<std::array<bool, 4>> collapsedEdges;
   std::size_t maxTerms = 0;  // the most control points of any patch
-  /// The distinct points the collapsed edges collapse to, each with the edges (patch, 0..3 as above) meeting there.
+  /// The distinct points patch edges collapse to, each with the edges (patch, 0..3 as below) meeting there.
   struct Pole {
     Eigen::Vector3d point;
     std::vector<std::pair<int, int>> edges;
   };
   std::vector<Pole> poles;
-  /// The pole patch `patch`'s collapsed edge `edge` collapses to.
-  const Pole& poleOf(int patch, int edge) const;
+  /// Per patch, for its edges s = 0, s = 1, t = 0, t = 1: the index in `poles` of the point it collapses to, or
+  /// −1 where it is not collapsed.
+  std::vector<std::array<int, 4>> poleOfEdge;
   /// The patches' corners, each distinct point once (patches meet at their corners: a torus's 64 are 16 points),
   /// with its first occurrence in (root, corner) order, sorted by that.
   struct Corner {
@@ -153,7 +153,7 @@ struct PatchForest {
                                            std::vector<std::unique_ptr<PatchNode>>& arena) const;
   /// Are n's children kept by the forest (cached) rather than made per query?
   static bool keepsChildren(const PatchNode& n) {
-    return n.depth < kCachedDepth || (n.pole && n.depth < kPoleCachedDepth);
+    return n.depth < kCachedDepth || (n.onPole() && n.depth < kPoleCachedDepth);
   }
 };
 
