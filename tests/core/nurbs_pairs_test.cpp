@@ -195,6 +195,35 @@ TEST(NurbsNurbs, SaddleContactsAtExtremeScalesAreExactAndCertified) {
   }
 }
 
+// A sphere centred on the torus's axis: the closest points form a circle on each model, so no pair of nodes
+// holds the minimum alone. The support ball about the sphere's centre fits with no margin; its certificates
+// subdivide the distance forms across the circle only (ratio_subdivision.h). Before, such a query spent its
+// whole pair budget and came back bounded, 1e-5 wide at 1e-9.
+TEST(NurbsNurbs, SphereOnTheTorusAxisIsCertified) {
+  for (double scale : {1e-4, 1.0, 1e4}) {
+    const auto torus = solid(torusSurface(1, 0.25, scale));
+    for (double height : {0.0, 0.05, 0.3}) {
+      for (double gap : {0.35, 1e-6}) {
+        SCOPED_TRACE(::testing::Message() << "scale " << scale << " height " << height << " gap " << gap);
+        const Vec centre(0, 0, height * scale);
+        const double radius = nurbs_truth::pointCircle(centre, {Vec::Zero(), Vec::UnitZ(), scale}) - 0.25 * scale -
+                              gap * scale;
+        const auto sphere = solid(sphereSurface(radius));
+        Eigen::Isometry3d XS = Eigen::Isometry3d::Identity();
+        XS.translation() = centre;
+        for (double tolerance : {1e-6, 1e-12}) {
+          DistanceOptions opt;
+          opt.tolerance = tolerance * scale;
+          const DistanceResult r = distance(*torus, Eigen::Isometry3d::Identity(), *sphere, XS, opt);
+          EXPECT_EQ(r.status, Status::Certified);
+          EXPECT_LE(r.upperBound - r.lowerBound, opt.tolerance);
+          expectBracket(r, gap * scale, 1e-12 * scale);
+        }
+      }
+    }
+  }
+}
+
 TEST(NurbsNurbs, NearlyTouchingSpheresAreProvedApart) {
   const auto s = solid(sphereSurface(1));
   DistanceOptions opt;

@@ -11,6 +11,8 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kExactReach = 2;  // a node within this many of its radii of the touching point is certified exactly
+constexpr double kCircleOfMinima = 1e-6;  // relative: the outer surface curves toward the inner as much as it can
+constexpr double kSameDirection = 0.99;  // cosine: a closest pair's normal and segment are parallel but for rounding
 constexpr double kMinMargin = 0.002;  // of the inner surface's curvature: a ball fitting by less is not used
 
 /// The least normal curvature of the patch at x, curving away from the direction `toward` (positive: the
@@ -28,6 +30,17 @@ double leastCurvatureAway(const RationalBezierPatch& patch, const Eigen::Vector2
   const double mean = 0.5 * (M(0, 0) + M(1, 1));
   const double half = std::hypot(0.5 * (M(0, 0) - M(1, 1)), 0.5 * (M(0, 1) + M(1, 0)));
   return mean - half;
+}
+
+/// The unit normal of the patch at x on the side of unit `direction`; `direction` itself where the normal is not
+/// defined (a pole) or is not within a few degrees of it (not a closest pair).
+Eigen::Vector3d unitNormalNear(const RationalBezierPatch& patch, const Eigen::Vector2d& x, const Eigen::Vector3d& direction) {
+  const SurfaceDerivatives d = patch.derivatives(x[0], x[1]);
+  const Eigen::Vector3d normal = d.du.cross(d.dv);
+  const double length = normal.norm();
+  if (!(length > 1e-12 * d.du.norm() * d.dv.norm())) return direction;
+  const Eigen::Vector3d unit = normal.dot(direction) >= 0 ? Eigen::Vector3d(normal / length) : Eigen::Vector3d(-normal / length);
+  return unit.dot(direction) >= kSameDirection ? unit : direction;
 }
 
 /// ρ with the two margins equal: the inner surface's least curvature kInner above 1/ρ by as much as the outer's
@@ -65,11 +78,15 @@ std::optional<SupportBall> SupportBall::fit(const RationalBezierPatch& patchA, c
   const double kB = leastCurvatureAway(patchB, xB, -(X_AB.linear().transpose() * n));
   if (!std::isfinite(kA) || !std::isfinite(kB)) return std::nullopt;
   // The inner side needs a strictly convex contact; the outer side may curve toward it by less than the larger
-  // ball (both convex is the support plane's case). A ball that barely fits (a circle of minima: the outer
-  // surface curves toward the inner as much as it can) leaves no margin for the certificates to settle anything
-  // and costs them at every pair. The radius for each choice of inner side, NaN where none fits:
+  // ball (both convex is the support plane's case). A ball that barely fits leaves no margin for the
+  // certificates to settle anything and costs them at every pair, but for one that fits exactly: a circle of
+  // minima (the outer surface curving toward the inner as much as it can, about the inner's centre of
+  // curvature), where the certificates settle the pairs along it by subdividing their forms across it. The
+  // radius for each choice of inner side, NaN where none fits:
   const auto radiusFor = [d](double kInner, double kOuter) {
-    if (!(kInner > 0) || (kOuter < 0 && !(1 / kInner + d < -1 / kOuter))) return std::nan("");
+    if (!(kInner > 0)) return std::nan("");
+    if (kOuter < 0 && std::abs(1 / kInner + d + 1 / kOuter) <= kCircleOfMinima * (1 / kInner + d)) return 1 / kInner;
+    if (kOuter < 0 && !(1 / kInner + d < -1 / kOuter)) return std::nan("");
     const double rho = balancedRadius(kInner, kOuter, d);
     return kOuter >= 0 || kInner - 1 / rho > kMinMargin * kInner ? rho : std::nan("");
   };
@@ -78,7 +95,13 @@ std::optional<SupportBall> SupportBall::fit(const RationalBezierPatch& patchA, c
   SupportBall ball;
   ball.innerIsB_ = !std::isnan(rhoB) && (kB >= kA || std::isnan(rhoA));
   ball.radius_ = ball.innerIsB_ ? rhoB : rhoA;
-  ball.centreA_ = ball.innerIsB_ ? Eigen::Vector3d(pB + ball.radius_ * n) : Eigen::Vector3d(pA - ball.radius_ * n);
+  // The centre along the inner surface's own normal: where the gap is small the segment's direction is
+  // rounding over a short length (1e-10 rad at a gap of 1e-6 of the size), which puts a zero-margin ball's centre
+  // off the axis it must lie on by more than a tight tolerance.
+  const Eigen::Matrix3d& R = X_AB.linear();
+  ball.centreA_ = ball.innerIsB_
+                      ? Eigen::Vector3d(pB - ball.radius_ * (R * unitNormalNear(patchB, xB, -(R.transpose() * n))))
+                      : Eigen::Vector3d(pA - ball.radius_ * unitNormalNear(patchA, xA, n));
   ball.centreB_ = X_AB.inverse() * ball.centreA_;
   ball.contactA_ = pA;
   ball.contactB_ = X_AB.inverse() * pB;
@@ -86,10 +109,10 @@ std::optional<SupportBall> SupportBall::fit(const RationalBezierPatch& patchA, c
 }
 
 double SupportBall::certified(NodeMemo& memo, const PatchNode& node, const Eigen::Vector3d& centre,
-                              const Eigen::Vector3d& contact, bool farthest) {
+                              const Eigen::Vector3d& contact, bool farthest, double enough) {
   return memo.get(node, [&] {
     const bool exact = (node.ball.center - contact).norm() <= kExactReach * node.ball.radius;
-    const DistanceExtreme e = certifyDistanceExtreme(node.net, centre, farthest, exact);
+    const DistanceExtreme e = certifyDistanceExtreme(node.net, centre, farthest, exact, enough);
     return e.proved ? e.value : (farthest ? kInf : 0.0);
   });
 }
@@ -115,10 +138,10 @@ double SupportBall::gap(const PatchNode& na, const PatchNode& nb, double needed)
   const Eigen::Vector3d& pInner = innerIsB_ ? contactB_ : contactA_;
   const Eigen::Vector3d& pOuter = innerIsB_ ? contactA_ : contactB_;
   if (cornerNear - far < needed)
-    far = std::min(far, certified(innerIsB_ ? farB_ : farA_, inner, cInner, pInner, true));
+    far = std::min(far, certified(innerIsB_ ? farB_ : farA_, inner, cInner, pInner, true, cornerNear - needed));
   if (cornerNear - far < needed) return near - far;
   if (near - far < needed)
-    near = std::max(near, certified(innerIsB_ ? nearA_ : nearB_, outer, cOuter, pOuter, false));
+    near = std::max(near, certified(innerIsB_ ? nearA_ : nearB_, outer, cOuter, pOuter, false, needed + far));
   return near - far;
 }
 

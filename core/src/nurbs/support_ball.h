@@ -35,8 +35,9 @@ class SupportBall {
   /// when not proved).
   /// Exact (by concavity) only for a node at the touching point `contact`; elsewhere the surface is clear of the
   /// sphere by a margin and the coefficient bound, second order in the node size, is what is worth its cost.
+  /// `enough`: the value that would settle the pairs at hand (certifyDistanceExtreme sharpens a bound short of it).
   double certified(NodeMemo& memo, const PatchNode& node, const Eigen::Vector3d& centre, const Eigen::Vector3d& contact,
-                   bool farthest);
+                   bool farthest, double enough);
 
   bool innerIsB_ = true;
   double radius_ = 0;

@@ -2,6 +2,7 @@
 
 #include "nurbs/bernstein_bound.h"
 #include "nurbs/bspline.h"
+#include "nurbs/ratio_subdivision.h"
 
 #include <algorithm>
 #include <array>
@@ -15,6 +16,7 @@ namespace {
 
 constexpr double kEps = std::numeric_limits<double>::epsilon();
 constexpr int kNewtonSteps = 12;
+constexpr int kSubdivisionBudget = 256;  // halvings of a distance form before its bound is taken as it stands
 
 /// Coefficients on the stack for the common degrees (up to a bicubic patch's squared distance, 7 × 7), on the
 /// heap beyond: a certificate is asked of many nodes per query.
@@ -210,7 +212,7 @@ SupportBound certifySupport(const RationalBezierPatch& patch, const Eigen::Vecto
 }
 
 DistanceExtreme certifyDistanceExtreme(const RationalBezierPatch& patch, const Eigen::Vector3d& c, bool farthest,
-                                       bool exact) {
+                                       bool exact, double enough) {
   const int n = patch.degreeU, m = patch.degreeV;
   if (2 * std::max(n, m) > kMaxNurbsDegree) return {};  // beyond the Bernstein evaluation's fixed rows
   // ±|X − c·W|² and W² in Bernstein form of degree (2n, 2m) (bernstein_bound.h).
@@ -243,8 +245,20 @@ DistanceExtreme certifyDistanceExtreme(const RationalBezierPatch& patch, const E
     if (!(h.w[k] > 0) || !std::isfinite(h.a[k])) return {};
     ratio = std::max(ratio, h.a[k] / h.w[k]);
   }
-  ratio += 2 * h.error * h.scale(0) / *std::min_element(h.w.begin(), h.w.end());
-  if (!exact) return {true, std::sqrt(std::max(0.0, farthest ? ratio : -ratio))};
+  const double allowance = 2 * h.error * h.scale(0) / *std::min_element(h.w.begin(), h.w.end());
+  ratio += allowance;
+  // The bound of ±|S − c|² that would do: the distance `enough` squared, signed.
+  const double enoughSquared = std::isnan(enough) ? ratio : farthest ? enough * enough : -std::max(0.0, enough) * enough;
+  const auto subdivided = [&](double upper) {
+    if (upper <= enoughSquared) return upper;
+    const RatioBound r = subdividedRatioBound(h.p, h.q, h.a.begin(), h.w.begin(),
+                                              {enoughSquared, allowance, kSubdivisionBudget});
+    return std::min(upper, r.upper);
+  };
+  if (!exact) {
+    const double upper = subdivided(ratio);
+    return {true, std::sqrt(std::max(0.0, farthest ? upper : -upper))};
+  }
   SupportBound b = certifyMaximum(h, [&](const Eigen::Vector2d& x) {
     const SurfaceDerivatives d = patch.derivatives(x[0], x[1]);
     const Eigen::Vector3d r = d.point - c;
@@ -256,7 +270,8 @@ DistanceExtreme certifyDistanceExtreme(const RationalBezierPatch& patch, const E
     out.hess *= 2 * sign;
     return out;
   });
-  const double upper = b.proved ? std::min(b.upper, ratio) : ratio;
+  // Proved by concavity, the bound is the maximum to rounding: subdividing cannot improve it.
+  const double upper = b.proved ? std::min(b.upper, ratio) : subdivided(ratio);
   // max of ±|S − c|²: the farthest distance is √upper; the nearest is √(−upper) (or 0 when the bound crosses 0).
   if (farthest) return {true, std::sqrt(std::max(0.0, upper))};
   return {true, std::sqrt(std::max(0.0, -upper))};

@@ -13,6 +13,8 @@
 
 #include "unidist/nurbs.h"
 
+#include <limits>
+
 namespace unidist::nurbs {
 
 struct SupportBound {
@@ -30,8 +32,10 @@ struct DistanceExtreme {
 
 /// The greatest (farthest = true) or least distance from c to the patch, both in one frame: exact to rounding
 /// where proved by concavity, else the bound of the Bernstein coefficients' ratios (second order in the patch
-/// size); without `exact` only the latter. Not proved only for non-finite input or non-positive weights.
+/// size); without `exact` only the latter. With `enough` (a distance that would do: farthest at most, or nearest
+/// at least, this), a bound short of it is sharpened by subdividing the form (ratio_subdivision.h). Not proved
+/// only for non-finite input or non-positive weights.
 DistanceExtreme certifyDistanceExtreme(const RationalBezierPatch& patch, const Eigen::Vector3d& c, bool farthest,
-                                       bool exact = true);
+                                       bool exact = true, double enough = std::numeric_limits<double>::quiet_NaN());
 
 }  // namespace unidist::nurbs
