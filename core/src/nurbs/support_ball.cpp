@@ -66,10 +66,8 @@ double farthestControlPoint(const PatchNode& n, const Eigen::Vector3d& c) {
 
 }  // namespace
 
-std::optional<SupportBall> SupportBall::fit(const RationalBezierPatch& patchA, const Eigen::Vector2d& xA,
-                                            const RationalBezierPatch& patchB, const Eigen::Vector2d& xB,
-                                            const Eigen::Isometry3d& X_AB, const Eigen::Vector3d& pA,
-                                            const Eigen::Vector3d& pB) {
+std::optional<SupportBall> SupportBall::fit(const SeparatorContact& contact) {
+  const auto& [patchA, xA, patchB, xB, X_AB, pA, pB] = contact;
   const Eigen::Vector3d gap = pB - pA;
   const double d = gap.norm();
   if (!(d > 0)) return std::nullopt;

@@ -9,6 +9,7 @@
 #pragma once
 
 #include "nurbs/patch_tree.h"
+#include "nurbs/separator_contact.h"
 
 #include <optional>
 
@@ -16,12 +17,8 @@ namespace unidist::nurbs {
 
 class SupportBall {
  public:
-  /// The ball for the closest pair pA (patch A at parameters xA), pB (patch B at xB), A's frame (B's points map
-  /// by X_AB); none when neither side is curved enough to fit one.
-  static std::optional<SupportBall> fit(const RationalBezierPatch& patchA, const Eigen::Vector2d& xA,
-                                        const RationalBezierPatch& patchB, const Eigen::Vector2d& xB,
-                                        const Eigen::Isometry3d& X_AB, const Eigen::Vector3d& pA,
-                                        const Eigen::Vector3d& pB);
+  /// The ball for the closest pair; none when neither side is curved enough to fit one.
+  static std::optional<SupportBall> fit(const SeparatorContact& contact);
 
   /// A proved lower bound of the distance between the two nodes (rounding of the nets aside, as for the other
   /// bounds); certificates are made (and kept per node) only while the bound falls short of `needed`.

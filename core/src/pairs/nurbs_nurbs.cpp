@@ -8,6 +8,7 @@
 #include "nurbs/patch_tree.h"
 #include "nurbs/support_ball.h"
 #include "nurbs/support_bound.h"
+#include "nurbs/support_tube.h"
 #include "unidist/nurbs.h"
 
 #include <algorithm>
@@ -85,7 +86,9 @@ class PairSearch {
       if (settledByRegion(*top.a, *top.b)) continue;
       ++iterations_;
       if (isFlat(*top.a) && isFlat(*top.b) && !nearNewtonEnd(top)) polishFrom(*top.a, *top.b);
-      const bool splitA = top.a->ball.radius >= top.b->ball.radius;
+      // The larger node, unless the tube proved it on its side and not the other (splitting it settles nothing).
+      const int unproved = tube_ ? tube_->lastUnproved() : 0;
+      const bool splitA = unproved != 0 ? unproved < 0 : top.a->ball.radius >= top.b->ball.radius;
       const Node* n = splitA ? top.a : top.b;
       if (n->depth >= kMaxDepth) {
         lowerOfClosed_ = std::min(lowerOfClosed_, top.lower);
@@ -208,6 +211,7 @@ class PairSearch {
     if (plane_.forBest == best_.value || !std::isfinite(best_.value)) return;
     plane_ = {};
     ball_.reset();
+    tube_.reset();
     plane_.forBest = best_.value;
     const Eigen::Vector3d gap = best_.pB - best_.pA;
     if (!(gap.norm() > 0)) return;
@@ -218,10 +222,12 @@ class PairSearch {
     plane_.convexContact =
         curvesAway(a_.patches()[static_cast<std::size_t>(best_.patchA)], best_.x.head<2>(), plane_.n) &&
         curvesAway(b_.patches()[static_cast<std::size_t>(best_.patchB)], best_.x.tail<2>(), -plane_.nB);
-    if (!plane_.convexContact)
-      ball_ = nurbs::SupportBall::fit(a_.patches()[static_cast<std::size_t>(best_.patchA)], best_.x.head<2>(),
-                                      b_.patches()[static_cast<std::size_t>(best_.patchB)], best_.x.tail<2>(), X_AB_,
-                                      best_.pA, best_.pB);
+    if (plane_.convexContact) return;
+    const nurbs::SeparatorContact contact{a_.patches()[static_cast<std::size_t>(best_.patchA)], best_.x.head<2>(),
+                                          b_.patches()[static_cast<std::size_t>(best_.patchB)], best_.x.tail<2>(),
+                                          X_AB_, best_.pA, best_.pB};
+    ball_ = nurbs::SupportBall::fit(contact);
+    if (!ball_) tube_ = nurbs::SupportTube::fit(contact, best_.value - 0.5 * tolerance_, tolerance_);
   }
 
   /// Does the surface at (s, t) curve away from the plane through it normal to n (on n's side), to first
@@ -271,6 +277,7 @@ class PairSearch {
     double lower;
     if (plane_.convexContact) lower = planeGap(na, nb) - margin;
     else if (ball_) lower = ball_->gap(na, nb, needed + margin) - margin;
+    else if (tube_) lower = tube_->gap(na, nb) - margin;
     else return false;
     if (lower < needed) return false;
     lowerOfPruned_ = std::min(lowerOfPruned_, lower);
@@ -473,6 +480,7 @@ class PairSearch {
   std::vector<ConvexRegion> regions_;
   SupportPlane plane_;
   std::optional<nurbs::SupportBall> ball_;
+  std::optional<nurbs::SupportTube> tube_;
   std::vector<std::unique_ptr<Node>> arena_;
   std::priority_queue<OpenPair, std::vector<OpenPair>, std::greater<OpenPair>> open_;
 };

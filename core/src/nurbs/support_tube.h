@@ -1,0 +1,61 @@
+// A tube about a circle separating two surfaces near their closest pair where neither a plane nor a ball can:
+// one surface (the inner) is a saddle there, curving toward the other along one principal direction and away
+// along the other, as the inside of a ring does. The tube (a torus) through the contact with the inner's
+// principal curvatures holds the inner surface near it (a torus's inside exactly: its own core circle), and the
+// outer surface stays outside the tube widened by the gap. The distance to a circle is 1-Lipschitz, so a node
+// inside the tube of radius s and one outside the tube of radius s + g are at least g apart. "Inside the tube
+// of radius s" is the sign of the torus's quartic, (|x|² + R² − s²)² − 4R²ρ² (ρ: distance from the axis), on the
+// node: its Bernstein coefficients times W⁴, of degree (4p, 4q), exact for a torus's own patches at any size and
+// second order in the size elsewhere. Two linked rings are the case this is for. Internal.
+#pragma once
+
+#include "nurbs/patch_tree.h"
+#include "nurbs/separator_contact.h"
+
+#include <optional>
+#include <vector>
+
+namespace unidist::nurbs {
+
+class SupportTube {
+ public:
+  /// The tube for the closest pair, separating pairs of nodes by `needed`: the inner surface tested against
+  /// radius r + ¼·tolerance, the outer against r + ¼·tolerance + needed. None where neither side is a saddle
+  /// curving toward the other.
+  static std::optional<SupportTube> fit(const SeparatorContact& contact, double needed, double tolerance);
+
+  /// The proved distance between the two nodes when the tube separates them (at least the `needed` it was made
+  /// for), else −infinity. Certificates are kept per node.
+  double gap(const PatchNode& na, const PatchNode& nb);
+
+  /// After a gap() that did not separate: +1 when only B's node was not proved on its side, −1 when only A's, else
+  /// 0 (splitting the proved one would settle nothing).
+  int lastUnproved() const { return lastUnproved_; }
+
+  bool innerIsA() const { return innerIsA_; }
+  double coreRadius() const { return R_; }
+
+ private:
+  struct Circle {
+    Eigen::Vector3d centre, axis;
+  };
+  /// A part of a patch proved on its side: so is every node inside it (a subpatch of a part inside the tube is
+  /// inside it), which spares their forms; the search visits the larger nodes first.
+  struct ProvedBox {
+    int patch;
+    double s0, s1, t0, t1;
+  };
+  static bool covered(const std::vector<ProvedBox>& boxes, const PatchNode& node);
+  /// Is the node inside (inside = true) the tube of radius s about the circle, or outside it? Proved.
+  bool proved(NodeMemo& memo, std::vector<ProvedBox>& boxes, const PatchNode& node, const Circle& circle, double s,
+              bool inside);
+
+  bool innerIsA_ = true;
+  int lastUnproved_ = 0;
+  double R_ = 0, inner_ = 0, outer_ = 0;  // core circle radius; the tube radii the two sides are tested against
+  Circle circleA_, circleB_;               // the circle in A's and in B's frame
+  NodeMemo innerMemo_, outerMemo_;
+  std::vector<ProvedBox> innerBoxes_, outerBoxes_;
+};
+
+}  // namespace unidist::nurbs
