@@ -44,8 +44,8 @@ class PointObjective final : public Objective {
   // The nearest distance certified by concavity of γW² − |X − qW|² over the piece (support_bound.h): exact where
   // the piece stays outside a sphere about q that touches it, which at a pole the curvature form cannot show;
   // elsewhere it is the same coefficient-ratio bound as tightLowerBound's (computed once, there).
-  double closingBound(const PatchNode& n) const override {
-    const DistanceExtreme e = certifyDistanceExtreme(n.net, q_, false, true);
+  double closingBound(const PatchNode& n, double enough) const override {
+    const DistanceExtreme e = certifyDistanceExtreme(n.net, q_, false, true, enough);
     return e.proved ? std::max(lowerBound(n), e.value) : tightLowerBound(n);
   }
   Cone criticalDirections(const BoundingSphere& b) const override { return coneTowards(q_, b.center, b.radius); }

@@ -264,7 +264,7 @@ SearchResult minimise(const PatchForest& forest, const std::vector<RationalBezie
       // A piece closed without a proof that its run found its minimum keeps the result's lower bound honest: at
       // most its own proved bound (Objective::closingBound).
       const auto keepClosedBound = [&] {
-        if (f.provesBasins()) closedBound = std::min(closedBound, std::max(top.lower, f.closingBound(n)));
+        if (f.provesBasins()) closedBound = std::min(closedBound, std::max(top.lower, f.closingBound(n, out.best.value - tolerance)));
       };
       // A run that went to a pole the piece touches: there the chart degenerates and no piece is ever proved.
       const auto atPole = [&](const PatchHit& h) {

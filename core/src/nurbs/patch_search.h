@@ -51,8 +51,11 @@ class Objective {
     return -std::numeric_limits<double>::infinity();
   }
   /// The tightest proved bound to be had, dearest: asked only of a piece closed without a proof that a Newton run
-  /// found its minimum, whose bound then limits the search's.
-  virtual double closingBound(const PatchNode& n) const { return tightLowerBound(n); }
+  /// found its minimum, whose bound then limits the search's. `enough`: a bound that would not limit it.
+  virtual double closingBound(const PatchNode& n, double enough) const {
+    (void)enough;
+    return tightLowerBound(n);
+  }
   /// Whether curvature/basinBound or edgeBound can ever prove a piece: where not, the search takes a small flat
   /// piece a Newton run ended in to hold that one minimum, instead of splitting it for a proof that cannot come.
   virtual bool provesBasins() const { return false; }
