@@ -9,6 +9,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
+#include <functional>
+#include <vector>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -165,6 +168,42 @@ TEST_F(NurbsReaders, IgesTorusWithOtherDelimiters) {
   EXPECT_TRUE(m.isSolid());
   EXPECT_NEAR(m.closestPoint(Eigen::Vector3d(0, 0, 0)).signedDistance, 0.75, 1e-12);
   EXPECT_NEAR(m.closestPoint(Eigen::Vector3d(1, 0, 0)).signedDistance, -0.25, 1e-12);
+}
+
+// Files OpenCASCADE's IGES writer wrote (tests/data/nurbs/occt_export.cpp): the surfaces as 120° arcs on
+// unclamped knot vectors, trimmed faces (144/142) or a B-rep (186 ...) around them, the trimming ignored (the
+// faces are whole). Exact against the analytic distances, and the model's box tight although the arcs' control
+// points reach twice the radius out.
+TEST_F(NurbsReaders, IgesWrittenByOpenCascade) {
+  const auto torusDistance = [](const Eigen::Vector3d& q) { return std::hypot(std::hypot(q.x(), q.y()) - 1, q.z()) - 0.25; };
+  const Eigen::Vector3d centre(1, 2, 3);
+  const auto sphereDistance = [&](const Eigen::Vector3d& q) { return (q - centre).norm() - 0.5; };
+  struct File {
+    const char* name;
+    std::function<double(const Eigen::Vector3d&)> truth;
+    Eigen::Vector3d lo, hi;
+  };
+  const std::vector<File> files = {
+      {"torus_occt_faces.igs", torusDistance, {-1.25, -1.25, -0.25}, {1.25, 1.25, 0.25}},
+      {"torus_occt_brep.igs", torusDistance, {-1.25, -1.25, -0.25}, {1.25, 1.25, 0.25}},
+      {"sphere_occt_faces.igs", sphereDistance, centre.array() - 0.5, centre.array() + 0.5}};
+  std::srand(7);
+  for (const File& f : files) {
+    SCOPED_TRACE(f.name);
+    const auto model = loadModel((kFixtures / f.name).string());
+    const NurbsModel& m = asNurbs(model);
+    EXPECT_TRUE(m.isSolid());
+    EXPECT_EQ(m.surfaces().size(), 1u);
+    // The box holds the surface and is within 2 % of its size of the true one (the control points' box was
+    // 3.75 x 4.33 x 0.87 for the torus).
+    const Aabb box = m.localBounds();
+    EXPECT_TRUE((box.min.array() <= f.lo.array() + 1e-9).all() && (box.max.array() >= f.hi.array() - 1e-9).all());
+    EXPECT_LT((box.min - f.lo).norm() + (box.max - f.hi).norm(), 0.02 * (f.hi - f.lo).norm());
+    for (int k = 0; k < 200; ++k) {
+      const Eigen::Vector3d q = 0.5 * (f.lo + f.hi) + 0.8 * (f.hi - f.lo).cwiseProduct(Eigen::Vector3d::Random());
+      EXPECT_NEAR(m.closestPoint(q).signedDistance, f.truth(q), 1e-9) << q.transpose();
+    }
+  }
 }
 
 // A parameter range narrower than the knot domain restricts the surface to it (here a band of the moved sphere:

@@ -17,6 +17,42 @@
 namespace unidist {
 namespace {
 
+/// The greatest n·S over the patch: its certified support value (support_bound.h), or where that is its control
+/// points' (a wide arc is not concave as one piece), the greatest over its quarters, down to `depth` levels.
+double supportUpper(const RationalBezierPatch& patch, const Eigen::Vector3d& n, int depth) {
+  double net = -std::numeric_limits<double>::infinity();
+  for (const Eigen::Vector4d& h : patch.net) net = std::max(net, n.dot(h.head<3>() / h[3]));
+  const nurbs::SupportBound b = nurbs::certifySupport(patch, n);
+  const double upper = b.proved ? std::min(b.upper, net) : net;
+  if (depth == 0) return upper;
+  double quarters = -std::numeric_limits<double>::infinity();
+  for (int k = 0; k < 4; ++k) {
+    const double s0 = 0.5 * (k % 2), t0 = 0.5 * (k / 2);
+    quarters = std::max(quarters, supportUpper(nurbs::subpatch(patch, s0, s0 + 0.5, t0, t0 + 0.5), n, depth - 1));
+  }
+  return std::min(upper, quarters);
+}
+
+/// The model's box: per axis direction the greatest certified support value of the patches that can reach past
+/// the others (their control points' box bounds the rest). The control points alone bound it too, but loosely
+/// where arcs are wide: a torus written with 120° arcs (OpenCASCADE's) has control points at twice its radius.
+Aabb certifiedBox(const std::vector<RationalBezierPatch>& patches) {
+  constexpr int kDepth = 2;  // quarters of quarters: arcs of 30° of a 120° one
+  Aabb box;
+  for (int axis = 0; axis < 3; ++axis)
+    for (double sign : {1.0, -1.0}) {
+      const Eigen::Vector3d n = sign * Eigen::Vector3d::Unit(axis);
+      double high = -std::numeric_limits<double>::infinity();
+      for (const RationalBezierPatch& p : patches) {
+        double net = -std::numeric_limits<double>::infinity();
+        for (const Eigen::Vector4d& h : p.net) net = std::max(net, n.dot(h.head<3>() / h[3]));
+        if (net > high) high = std::max(high, supportUpper(p, n, kDepth));
+      }
+      (sign > 0 ? box.max : box.min)[axis] = sign * high;
+    }
+  return box;
+}
+
 // Every distance is resolved to this fraction of the model size (the contract's default tolerance is 1e-9).
 constexpr double kRelativeTolerance = 1e-13;
 // A solid's surface must be closed to this fraction of the model size.
@@ -53,12 +89,7 @@ NurbsModel::NurbsModel(std::vector<NurbsSurface> surfaces, bool solid) : surface
     }
   forest_ = std::make_unique<nurbs::PatchForest>(patches_);
   standIns_ = std::make_unique<lod::StandInCache>();
-  // Bounds: the box of the Euclidean control points (convex hull property). Exact for the conic models whose
-  // extreme control points lie on the surface (sphere, torus, cylinder); conservative otherwise. (The support
-  // searches that would make it tight are slow at poles, where the cells along a collapsed edge all reach the
-  // extreme point.)
-  for (const RationalBezierPatch& p : patches_)
-    for (const Eigen::Vector4d& h : p.net) bounds_.extend(h.head<3>() / h[3]);
+  bounds_ = certifiedBox(patches_);
   if (solid_) {
     checkClosed();
     if (enclosedVolume() < 0) orientation_ = -1;
