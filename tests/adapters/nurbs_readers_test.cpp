@@ -206,6 +206,19 @@ TEST_F(NurbsReaders, IgesWrittenByOpenCascade) {
   }
 }
 
+// A trim that keeps less than the whole surface is refused, naming the entity (read untrimmed, the model would
+// be wrong): holes, a boundary inside the parameter rectangle, a boundary in model space only, a face with two
+// loops. Edits of the OpenCASCADE files, each keeping the line's 64 data columns.
+TEST_F(NurbsReaders, IgesTrimmedFacesAreRefused) {
+  const std::string faces = readText(kFixtures / "torus_occt_faces.igs");
+  const std::string brep = readText(kFixtures / "torus_occt_brep.igs");
+  expectError("holes.igs", replaceOnce(faces, "144,3,1,0,5;  ", "144,3,1,1,5,7;"), ":", "entity 144 (directory entry 1) cuts 1 hole");
+  // The outer boundary's parameter-space curve swapped for its model-space one: points off the rectangle.
+  expectError("inside.igs", replaceOnce(faces, "142,0,3,7,17,3;", "142,0,3,17,7,3;"), ":", "keeps part of its surface");
+  expectError("model.igs", replaceOnce(faces, "142,0,3,7,17,3;", "142,0,3,0,17,3;"), ":", "in model space only");
+  expectError("loops.igs", replaceOnce(brep, "510,7,1,1,9;  ", "510,7,2,1,9,9;"), ":", "entity 510 (directory entry 5) has 2 loops");
+}
+
 // A parameter range narrower than the knot domain restricts the surface to it (here a band of the moved sphere:
 // half its longitudes, its middle latitudes), an open model; one reaching outside the domain is an error.
 TEST_F(NurbsReaders, IgesParameterRangeRestrictsTheSurface) {

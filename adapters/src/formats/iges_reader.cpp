@@ -8,8 +8,11 @@
 // first P line (by sequence number), field 7 to a transformation matrix, and line 2 field 4 gives the P line
 // count. Parameter data is columns 1–64 of those P lines; strings are Hollerith (nHtext), numbers may use D
 // exponents. Entity 128: K1 K2 M1 M2 PROP1..5, knots, weights, control points, parameter range.
-// Not modelled: trimming (entities 142/143/144/510 are ignored, so a trimmed face is read untrimmed — the file's
-// surfaces must be the model). A parameter range narrower than the knot domain restricts the surface to it
+// Trimming is not modelled: a trimmed face (144 with 142, or a B-rep face 510 with its loop 508) is accepted
+// only where its boundary, in the surface's parameter space (102 / 110 / 126 curves), traces the whole parameter
+// rectangle, so that the face is the whole surface (a CAD kernel's closed torus or sphere); holes, a boundary
+// inside the rectangle, a bounded surface (143) or a boundary given in model space only are refused with an
+// error naming the entity. A parameter range narrower than the knot domain restricts the surface to it
 // (NurbsSurface::restricted); one reaching outside it is an error.
 // The model is a solid when its surfaces close up (NurbsModel's closedness test), an open surface otherwise.
 // Every problem is an InputError "<path>:<line>: ..." (physical line of the file, from 1).
@@ -19,6 +22,8 @@
 #include "unidist/adapters/spec.h"
 #include "unidist/nurbs.h"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
 #include <set>
@@ -46,6 +51,7 @@ class IgesParser {
     if (directory_.empty()) failAt(lastLine_, "no directory section (D lines): not an IGES file");
     readGlobal();
     readDirectory();
+    checkTrimming();
     std::vector<NurbsSurface> surfaces;
     std::size_t firstLine = 0;
     for (const auto& [de, entry] : entries_) {
@@ -292,6 +298,193 @@ class IgesParser {
       return s.restricted(u0, u1, v0, v1);
     } catch (const InputError& err) {
       failAt(line, "entity 128 (directory entry " + std::to_string(de) + "): " + err.what());
+    }
+  }
+
+  // --- Trimming: accepted only where it keeps the whole surface (a face bounded by its parameter rectangle, as a
+  // CAD kernel writes a closed torus or sphere); any other trim is refused, since the untrimmed surface would be
+  // a silently wrong model.
+
+  const DirectoryEntry& entryAt(int de, std::size_t line, const char* what) const {
+    const auto it = entries_.find(de);
+    if (it == entries_.end()) failAt(line, std::string(what) + " pointer " + std::to_string(de) + " names no directory entry");
+    return it->second;
+  }
+
+  int pointer(const std::vector<Token>& t, std::size_t k, const char* what) const {
+    if (k >= t.size()) failAt(t.back().line, std::string("entity ") + t.front().text + " ends before " + what);
+    return integer(t[k], what);
+  }
+
+  /// The parameter rectangle [u0, u1] x [v0, v1] of the entity 128 at de (its range fields, the last four).
+  std::array<double, 4> rectangleOf(int de, std::size_t line) const {
+    const DirectoryEntry& e = entryAt(de, line, "surface");
+    if (e.type != 128)
+      failAt(line, "a trimmed surface is entity " + std::to_string(e.type) + ", not a rational B-spline surface (128)");
+    const std::vector<Token> t = parameters(e);
+    const int k1 = pointer(t, 1, "K1"), k2 = pointer(t, 2, "K2"), m1 = pointer(t, 3, "M1"), m2 = pointer(t, 4, "M2");
+    const auto count = [](int k) { return static_cast<std::size_t>(k); };
+    const std::size_t rangeAt = 10 + count(k1 + m1 + 2) + count(k2 + m2 + 2) + 4 * count(k1 + 1) * count(k2 + 1);
+    if (rangeAt + 4 > t.size()) failAt(t.back().line, "entity 128 ends before the parameter range");
+    std::array<double, 4> r{};
+    for (std::size_t k = 0; k < 4; ++k) r[k] = number(t[rangeAt + k], "parameter range");
+    return r;
+  }
+
+  /// The point of the entity 126 (rational B-spline curve) tokens t at parameter x, by de Boor.
+  Eigen::Vector2d curvePoint(const std::vector<Token>& t, double x) const {
+    const int k = pointer(t, 1, "K"), m = pointer(t, 2, "M");
+    if (m < 1 || m > 30) failAt(t.front().line, "entity 126 degree outside 1..30");
+    const std::size_t knotsAt = 7, weightsAt = knotsAt + static_cast<std::size_t>(k + m + 2),
+                      pointsAt = weightsAt + static_cast<std::size_t>(k + 1);
+    if (pointsAt + 3 * static_cast<std::size_t>(k + 1) > t.size()) failAt(t.back().line, "entity 126 ends before its control points");
+    std::vector<double> knots;
+    for (int i = 0; i < k + m + 2; ++i) knots.push_back(number(t[knotsAt + static_cast<std::size_t>(i)], "knot"));
+    int span = m;
+    while (span < k && x >= knots[static_cast<std::size_t>(span + 1)]) ++span;
+    std::vector<Eigen::Vector3d> d;  // homogeneous (w·u, w·v, w)
+    for (int i = span - m; i <= span; ++i) {
+      const double w = number(t[weightsAt + static_cast<std::size_t>(i)], "weight");
+      const std::size_t at = pointsAt + 3 * static_cast<std::size_t>(i);
+      d.emplace_back(w * number(t[at], "control point"), w * number(t[at + 1], "control point"), w);
+    }
+    for (int r = 1; r <= m; ++r)
+      for (int j = m; j >= r; --j) {
+        const double a = knots[static_cast<std::size_t>(span - m + j)], b = knots[static_cast<std::size_t>(span + 1 + j - r)];
+        const double alpha = b > a ? (x - a) / (b - a) : 0;
+        d[static_cast<std::size_t>(j)] = (1 - alpha) * d[static_cast<std::size_t>(j - 1)] + alpha * d[static_cast<std::size_t>(j)];
+      }
+    return d[static_cast<std::size_t>(m)].head<2>() / d[static_cast<std::size_t>(m)][2];
+  }
+
+  /// A piece of a parameter-space boundary lying on one edge of the rectangle: the edge (0: u = u0, 1: u = u1,
+  /// 2: v = v0, 3: v = v1) and the interval of it the piece covers; pieces are followed through composites (102).
+  struct EdgePiece {
+    int edge;
+    double from, to;
+  };
+  void edgePieces(int de, const std::array<double, 4>& r, std::size_t line, std::vector<EdgePiece>& out, int depth = 0) const {
+    // Composites pointing into each other would otherwise be followed without end.
+    if (depth > 8 || out.size() > 100000) failAt(line, "composite curves nest too deep or repeat");
+    const DirectoryEntry& e = entryAt(de, line, "boundary curve");
+    const std::vector<Token> t = parameters(e);
+    std::vector<Eigen::Vector2d> points;  // the piece lies in their hull
+    Eigen::Vector2d a, b;                 // its ends
+    if (e.type == 102) {
+      const int n = pointer(t, 1, "N");
+      for (int k = 0; k < n; ++k) edgePieces(pointer(t, 2 + static_cast<std::size_t>(k), "piece"), r, line, out, depth + 1);
+      return;
+    } else if (e.type == 110) {
+      if (t.size() < 7) failAt(t.back().line, "entity 110 needs 6 numbers");
+      a = {number(t[1], "line"), number(t[2], "line")};
+      b = {number(t[4], "line"), number(t[5], "line")};
+      points = {a, b};
+    } else if (e.type == 126) {
+      const int k = pointer(t, 1, "K"), m = pointer(t, 2, "M");
+      const std::size_t pointsAt = 7 + static_cast<std::size_t>(k + m + 2) + static_cast<std::size_t>(k + 1);
+      const std::size_t rangeAt = pointsAt + 3 * static_cast<std::size_t>(k + 1);
+      if (rangeAt + 2 > t.size()) failAt(t.back().line, "entity 126 ends before its parameter range");
+      for (int i = 0; i <= k; ++i) {
+        const std::size_t at = pointsAt + 3 * static_cast<std::size_t>(i);
+        points.emplace_back(number(t[at], "control point"), number(t[at + 1], "control point"));
+      }
+      a = curvePoint(t, number(t[rangeAt], "curve range"));
+      b = curvePoint(t, number(t[rangeAt + 1], "curve range"));
+    } else {
+      failAt(line, "a trimming boundary is entity " + std::to_string(e.type) +
+                       " (read: 102, 110, 126 in parameter space): trimmed surfaces are not read");
+    }
+    const double slack = 1e-7 * std::max(r[1] - r[0], r[3] - r[2]);
+    for (int edge = 0; edge < 4; ++edge) {
+      const int axis = edge < 2 ? 0 : 1;
+      const double at = r[static_cast<std::size_t>(edge)];
+      if (std::all_of(points.begin(), points.end(), [&](const Eigen::Vector2d& p) { return std::abs(p[axis] - at) <= slack; })) {
+        out.push_back({edge, std::min(a[1 - axis], b[1 - axis]), std::max(a[1 - axis], b[1 - axis])});
+        return;
+      }
+    }
+    out.push_back({-1, 0, 0});  // inside the rectangle: a real trim
+  }
+
+  /// Do the boundary curves trace the whole rectangle of the surface at surfaceDe (every edge covered)?
+  bool wholeRectangle(int surfaceDe, const std::vector<int>& curves, std::size_t line) const {
+    const std::array<double, 4> r = rectangleOf(surfaceDe, line);
+    std::vector<EdgePiece> pieces;
+    for (int c : curves) edgePieces(c, r, line, pieces);
+    const double slack = 1e-7 * std::max(r[1] - r[0], r[3] - r[2]);
+    for (int edge = 0; edge < 4; ++edge) {
+      const int axis = edge < 2 ? 1 : 0;  // the coordinate along the edge
+      std::vector<std::pair<double, double>> covered;
+      for (const EdgePiece& p : pieces) {
+        if (p.edge < 0) return false;
+        if (p.edge == edge) covered.emplace_back(p.from, p.to);
+      }
+      std::sort(covered.begin(), covered.end());
+      double reached = r[static_cast<std::size_t>(2 * axis)];
+      for (const auto& [from, to] : covered) {
+        if (from > reached + slack) return false;
+        reached = std::max(reached, to);
+      }
+      if (reached < r[static_cast<std::size_t>(2 * axis + 1)] - slack && !collapsed(surfaceDe, edge, line)) return false;
+    }
+    return true;
+  }
+
+  /// Does the edge of the surface at de collapse to a point (a sphere's pole, which a boundary leaves out)?
+  /// Sampled densely along it: an edge curve that is not a point moves between samples.
+  bool collapsed(int de, int edge, std::size_t line) const {
+    const NurbsSurface s = surface(de, entryAt(de, line, "surface"));
+    const auto at = [&](double x) {
+      return edge < 2 ? s.evaluate(edge == 0 ? s.uMin() : s.uMax(), s.vMin() + x * (s.vMax() - s.vMin()))
+                      : s.evaluate(s.uMin() + x * (s.uMax() - s.uMin()), edge == 2 ? s.vMin() : s.vMax());
+    };
+    const Eigen::Vector3d first = at(0);
+    double reach = 0, spread = 0;
+    for (int k = 0; k <= 64; ++k) {
+      const Eigen::Vector3d p = at(k / 64.0), q = s.evaluate(s.uMin() + (s.uMax() - s.uMin()) * k / 64.0, s.vMin() + (s.vMax() - s.vMin()) * k / 64.0);
+      spread = std::max(spread, (p - first).norm());
+      reach = std::max(reach, (q - first).norm());
+    }
+    return spread <= 1e-9 * std::max(reach, 1e-300);
+  }
+
+  void checkTrimming() const {
+    for (const auto& [de, e] : entries_) {
+      const auto refuse = [&](const std::string& why) {
+        failAt(e.line, "entity " + std::to_string(e.type) + " (directory entry " + std::to_string(de) + ") " + why +
+                           ": trimmed surfaces are not read (the untrimmed surface would be a wrong model)");
+      };
+      if (e.type == 143) refuse("bounds a surface by curves");
+      if (e.type == 144) {  // PTS N1 N2 PTO PTI...
+        const std::vector<Token> t = parameters(e);
+        const int surfaceDe = pointer(t, 1, "PTS"), n1 = pointer(t, 2, "N1"), n2 = pointer(t, 3, "N2");
+        if (n2 > 0) refuse("cuts " + std::to_string(n2) + " hole(s) into its surface");
+        if (n1 == 0) continue;  // the outer boundary is the surface's own
+        const DirectoryEntry& outer = entryAt(pointer(t, 4, "PTO"), e.line, "outer boundary");
+        if (outer.type != 142) refuse("has an outer boundary that is not a curve on a surface (142)");
+        const std::vector<Token> c = parameters(outer);  // CRTN SPTR BPTR CPTR PREF
+        const int inParameters = pointer(c, 3, "BPTR");
+        if (inParameters == 0) refuse("gives its boundary in model space only");
+        if (!wholeRectangle(surfaceDe, {inParameters}, e.line)) refuse("keeps part of its surface");
+      }
+      if (e.type == 510) {  // SURF N OF LOOP1..N
+        const std::vector<Token> t = parameters(e);
+        const int surfaceDe = pointer(t, 1, "SURF"), loops = pointer(t, 2, "N");
+        if (loops != 1) refuse("has " + std::to_string(loops) + " loops (holes)");
+        const DirectoryEntry& loop = entryAt(pointer(t, 4, "LOOP"), e.line, "loop");
+        if (loop.type != 508) refuse("has a loop that is not entity 508");
+        const std::vector<Token> l = parameters(loop);  // N, then per edge TYPE EDGE NDX OF K (ISOP CURV) x K
+        const int edges = pointer(l, 1, "N");
+        std::vector<int> curves;
+        std::size_t at = 2;
+        for (int k = 0; k < edges; ++k) {
+          const int count = pointer(l, at + 4, "K");
+          if (count == 0) refuse("has an edge without a parameter-space curve");
+          for (int c = 0; c < count; ++c) curves.push_back(pointer(l, at + 6 + 2 * static_cast<std::size_t>(c), "CURV"));
+          at += 5 + 2 * static_cast<std::size_t>(count);
+        }
+        if (!wholeRectangle(surfaceDe, curves, e.line)) refuse("keeps part of its surface");
+      }
     }
   }
 
