@@ -13,11 +13,14 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kExactReach = 2;  // a node within this many of its radii of the touching point is certified exactly
 constexpr double kCircleOfMinima = 1e-6;  // relative: the outer surface curves toward the inner as much as it can
 constexpr double kSameDirection = 0.99;  // cosine: a closest pair's normal and segment are parallel but for rounding
+constexpr double kUmbilic = 1e-9;  // relative spread of the principal curvatures: a sphere's point
 constexpr double kMinMargin = 0.002;  // of the inner surface's curvature: a ball fitting by less is not used
 
 /// The least normal curvature of the patch at x, curving away from the direction `toward` (positive: the
-/// surface bends away from a point on that side), or NaN where the first fundamental form is singular.
-double leastCurvatureAway(const RationalBezierPatch& patch, const Eigen::Vector2d& x, const Eigen::Vector3d& toward) {
+/// surface bends away from a point on that side), or NaN where the first fundamental form is singular; with
+/// `spread`, the greatest less the least.
+double leastCurvatureAway(const RationalBezierPatch& patch, const Eigen::Vector2d& x, const Eigen::Vector3d& toward,
+                          double* spread = nullptr) {
   const SurfaceDerivatives d = patch.derivatives(x[0], x[1]);
   Eigen::Matrix2d G, H;
   G << d.du.squaredNorm(), d.du.dot(d.dv), d.du.dot(d.dv), d.dv.squaredNorm();
@@ -29,6 +32,7 @@ double leastCurvatureAway(const RationalBezierPatch& patch, const Eigen::Vector2
   const Eigen::Matrix2d M = Li * H * Li.transpose();  // the shape operator in an orthonormal tangent frame
   const double mean = 0.5 * (M(0, 0) + M(1, 1));
   const double half = std::hypot(0.5 * (M(0, 0) - M(1, 1)), 0.5 * (M(0, 1) + M(1, 0)));
+  if (spread) *spread = 2 * half;
   return mean - half;
 }
 
@@ -72,8 +76,9 @@ std::optional<SupportBall> SupportBall::fit(const SeparatorContact& contact) {
   const double d = gap.norm();
   if (!(d > 0)) return std::nullopt;
   const Eigen::Vector3d n = gap / d;
-  const double kA = leastCurvatureAway(patchA, xA, n);
-  const double kB = leastCurvatureAway(patchB, xB, -(X_AB.linear().transpose() * n));
+  double spreadA = 0, spreadB = 0;
+  const double kA = leastCurvatureAway(patchA, xA, n, &spreadA);
+  const double kB = leastCurvatureAway(patchB, xB, -(X_AB.linear().transpose() * n), &spreadB);
   if (!std::isfinite(kA) || !std::isfinite(kB)) return std::nullopt;
   // The inner side needs a strictly convex contact; the outer side may curve toward it by less than the larger
   // ball (both convex is the support plane's case). A ball that barely fits leaves no margin for the
@@ -81,14 +86,17 @@ std::optional<SupportBall> SupportBall::fit(const SeparatorContact& contact) {
   // minima (the outer surface curving toward the inner as much as it can, about the inner's centre of
   // curvature), where the certificates settle the pairs along it by subdividing their forms across it. The
   // radius for each choice of inner side, NaN where none fits:
-  const auto radiusFor = [d](double kInner, double kOuter) {
+  // An inner side curving alike every way (a sphere) gets its own radius: its far side is then exact for every
+  // node at any size (|X − cW|² − ρ²W² vanishes), and the margin is all the outer side's.
+  const auto radiusFor = [d](double kInner, double spreadInner, double kOuter) {
     if (!(kInner > 0)) return std::nan("");
     if (kOuter < 0 && std::abs(1 / kInner + d + 1 / kOuter) <= kCircleOfMinima * (1 / kInner + d)) return 1 / kInner;
     if (kOuter < 0 && !(1 / kInner + d < -1 / kOuter)) return std::nan("");
+    if (spreadInner <= kUmbilic * kInner) return 1 / kInner;
     const double rho = balancedRadius(kInner, kOuter, d);
     return kOuter >= 0 || kInner - 1 / rho > kMinMargin * kInner ? rho : std::nan("");
   };
-  const double rhoB = radiusFor(kB, kA), rhoA = radiusFor(kA, kB);
+  const double rhoB = radiusFor(kB, spreadB, kA), rhoA = radiusFor(kA, spreadA, kB);
   if (std::isnan(rhoB) && std::isnan(rhoA)) return std::nullopt;
   SupportBall ball;
   ball.innerIsB_ = !std::isnan(rhoB) && (kB >= kA || std::isnan(rhoA));

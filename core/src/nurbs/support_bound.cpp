@@ -246,6 +246,12 @@ DistanceExtreme certifyDistanceExtreme(const RationalBezierPatch& patch, const E
     ratio = std::max(ratio, h.a[k] / h.w[k]);
   }
   const double allowance = 2 * h.error * h.scale(0) / *std::min_element(h.w.begin(), h.w.end());
+  // A corner's coefficient ratio is the value there: the coefficients' bound within rounding of one is exact (a
+  // sphere seen from its centre, at any size), and concavity could prove no more.
+  const int corners[4] = {0, h.q, (h.p + 1) * (h.q + 1) - 1 - h.q, (h.p + 1) * (h.q + 1) - 1};
+  double cornerHigh = -std::numeric_limits<double>::infinity();
+  for (int k : corners) cornerHigh = std::max(cornerHigh, h.a[static_cast<std::size_t>(k)] / h.w[static_cast<std::size_t>(k)]);
+  const bool ratioExact = ratio <= cornerHigh + allowance;
   ratio += allowance;
   // The bound of ±|S − c|² that would do: the distance `enough` squared, signed.
   const double enoughSquared = std::isnan(enough) ? ratio : farthest ? enough * enough : -std::max(0.0, enough) * enough;
@@ -255,7 +261,7 @@ DistanceExtreme certifyDistanceExtreme(const RationalBezierPatch& patch, const E
                                               {enoughSquared, allowance, kSubdivisionBudget});
     return std::min(upper, r.upper);
   };
-  if (!exact) {
+  if (!exact || ratioExact) {
     const double upper = subdivided(ratio);
     return {true, std::sqrt(std::max(0.0, farthest ? upper : -upper))};
   }
