@@ -1,9 +1,9 @@
 #include "dispatch.h"
 
-#include "convex/gjk.h"
 #include "generic/generic_distance.h"
 #include "pairs/analytic.h"
 #include "pairs/box_box.h"
+#include "pairs/convex_pair.h"
 #include "pairs/mesh_convex.h"
 #include "pairs/mesh_mesh.h"
 #include "pairs/nurbs_cloud.h"
@@ -19,34 +19,6 @@
 
 namespace unidist::detail {
 namespace {
-
-DistanceResult fromConvex(const ConvexDistance& c, const char* method) {
-  DistanceResult r;
-  r.distance = c.distance;
-  r.pointA = c.pointA;
-  r.pointB = c.pointB;
-  r.normal = c.normal;
-  r.lowerBound = std::min(c.lowerBound, c.distance);
-  r.upperBound = std::max(c.upperBound, c.distance);
-  r.iterations = c.iterations;
-  r.method = method;
-  return r;
-}
-
-// GJK/EPA converge in tens of iterations; thousands mean a degenerate overlap (coaxial, concentric) whose
-// direction is not unique: stop there with honest bounds instead of spending half a second.
-constexpr int kConvexIterationCap = 4000;
-
-DistanceResult convexPair(const PosedModel& a, const PosedModel& b, const QueryContext& ctx) {
-  const SupportFn supportA = [&a](const Eigen::Vector3d& d) { return a.supportWorld(d); };
-  const SupportFn supportB = [&b](const Eigen::Vector3d& d) { return b.supportWorld(d); };
-  const ConvexDistance c = convexDistance(supportA, supportB, ctx.tolerance, std::min(ctx.maxIterations, kConvexIterationCap));
-  DistanceResult r = fromConvex(c, "gjk-epa");
-  // Certified only when the bounds meet and the witness points are proved on their surfaces.
-  settleStatus(r, ctx.tolerance);
-  if (!c.converged) r.status = Status::Bounded;
-  return r;
-}
 
 DistanceResult boxPair(const PosedModel& a, const PosedModel& b, const QueryContext& ctx) {
   const auto& ba = static_cast<const Box&>(a.model);

@@ -4,6 +4,7 @@
 #include "output.h"
 
 #include "unidist/adapters/load.h"
+#include "unidist/nurbs.h"
 
 namespace unidist::cli {
 
@@ -25,6 +26,15 @@ std::string runInfo(const InfoArgs& args) {
   }
   const BoundingSphere ball = m->localBoundingSphere();
   const bool bounded = box.bounded();
+  // A NURBS solid is convex when proved so (its support map is then a search, not a formula: isConvex() stays
+  // false); the text says why not.
+  bool convex = m->isConvex();
+  std::string convexText = convex ? "yes" : "no";
+  if (const auto* nurbs = dynamic_cast<const NurbsModel*>(m.get()); nurbs && nurbs->isSolid()) {
+    std::string why;
+    convex = nurbs->provedConvex(&why);
+    convexText = convex ? "yes (proved: curvature and creases of every patch, one closed surface)" : "no: " + why;
+  }
 
   std::string out;
   if (args.json) {
@@ -32,7 +42,7 @@ std::string runInfo(const InfoArgs& args) {
           ", \"bounded\": " + (bounded ? "true" : "false") + ", \"aabb\": {\"min\": " + jsonVector(box.min) +
           ", \"max\": " + jsonVector(box.max) + "}, \"bounding_sphere\": {\"center\": " + jsonVector(ball.center) +
           ", \"radius\": " + jsonNumber(ball.radius) + "}, \"solid\": " + (m->isSolid() ? "true" : "false") +
-          ", \"convex\": " + (m->isConvex() ? "true" : "false") +
+          ", \"convex\": " + (convex ? "true" : "false") +
           ", \"memory_bytes\": " + std::to_string(m->memoryBytes()) + ", \"structures\": [" + structuresJson + "]}\n";
   } else {
     out += "type         " + std::string(toString(m->type())) + "\n";
@@ -41,7 +51,7 @@ std::string runInfo(const InfoArgs& args) {
            (bounded ? "" : "  (unbounded)") + "\n";
     out += "bounding     centre " + textVector(ball.center) + "  radius " + textNumber(ball.radius) + "\n";
     out += "solid        " + std::string(m->isSolid() ? "yes" : "no (no inside: unsigned distances)") + "\n";
-    out += "convex       " + std::string(m->isConvex() ? "yes" : "no") + "\n";
+    out += "convex       " + convexText + "\n";
     out += "memory       " + std::to_string(m->memoryBytes()) + " bytes\n";
     if (!structuresText.empty()) out += "structures   " + structuresText + "\n";
   }

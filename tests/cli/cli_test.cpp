@@ -333,6 +333,16 @@ TEST(CliInfo, JsonDescribesTheModel) {
   EXPECT_TRUE(plane.at("aabb").at("max").at(0).is_null());
 }
 
+TEST(CliInfo, NurbsConvexityIsProvedOrExplained) {
+  EXPECT_EQ(queryJson({"info", kNurbsBall}).at("convex"), true);
+  const std::string torus =
+      (std::filesystem::path(__FILE__).parent_path() / "../data/nurbs/torus_occt_faces.igs").string();
+  EXPECT_EQ(queryJson({"info", torus}).at("convex"), false);
+  const Outcome r = run({"info", torus});
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_NE(r.out.find("convex       no: patch 0 curves toward its outward normal"), std::string::npos) << r.out;
+}
+
 TEST(CliInfo, HumanReadable) {
   const Outcome r = run({"info", "sphere:r=2"});
   ASSERT_EQ(r.exitCode, 0) << r.err;

@@ -49,6 +49,7 @@
 
 #include <array>
 #include <memory>
+#include <string>
 #include <vector>
 
 namespace unidist {
@@ -180,6 +181,12 @@ class NurbsModel final : public Model {
   bool periodic(int s, int d) const { return periodic_[static_cast<std::size_t>(s)][static_cast<std::size_t>(d)]; }
   /// Outward unit normal of patch k at local (s, t); at a degenerate point (pole) the limit from inside the patch.
   Eigen::Vector3d patchNormal(int k, double s, double t) const;
+  /// Whether the solid is proved to bound a convex body (Bernstein signs of its curvature and creases, one
+  /// connected surface: core/src/nurbs/convexity_certificate.h). Then its penetration depth against another
+  /// convex solid is a support-function minimum (GJK/EPA), not a search over translations. Decided on the
+  /// first call (thread-safe; milliseconds for tens of patches); false for open surface sets. `why`, when
+  /// given, receives what failed.
+  bool provedConvex(std::string* why = nullptr) const;
   /// The subdivision tree (internal type, for tests and core/src).
   const nurbs::PatchForest& forest() const { return *forest_; }
 
@@ -213,6 +220,8 @@ class NurbsModel final : public Model {
   // Solids: per patch, the other patches through its corners (s + 2t) and along its edges (4 + e: s = 0, s = 1,
   // t = 0, t = 1; at the edge's midpoint, kept only where one patch's whole edge matches it).
   std::vector<std::vector<Incident>> incidents_;
+  struct Convexity;  // the convexity verdict, made on first use
+  std::unique_ptr<Convexity> convexity_;
 };
 
 }  // namespace unidist

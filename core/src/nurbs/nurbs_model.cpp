@@ -2,6 +2,7 @@
 #include "unidist/nurbs.h"
 
 #include "lod/tessellate.h"
+#include "nurbs/convexity_certificate.h"
 #include "nurbs/objectives.h"
 #include "nurbs/patch_search.h"
 #include "nurbs/patch_tree.h"
@@ -13,6 +14,7 @@
 #include <cstdio>
 #include <limits>
 #include <memory_resource>
+#include <mutex>
 
 namespace unidist {
 namespace {
@@ -89,6 +91,7 @@ NurbsModel::NurbsModel(std::vector<NurbsSurface> surfaces, bool solid) : surface
     }
   forest_ = std::make_unique<nurbs::PatchForest>(patches_);
   standIns_ = std::make_unique<lod::StandInCache>();
+  convexity_ = std::make_unique<Convexity>();
   bounds_ = certifiedBox(patches_);
   if (solid_) {
     checkClosed();
@@ -102,7 +105,21 @@ NurbsModel::NurbsModel(std::vector<NurbsSurface> surfaces, bool solid) : surface
   cells_ = std::make_unique<nurbs::PointCells>(bounds_.min - margin, bounds_.max + margin, size / kCellsAcross);
 }
 
+struct NurbsModel::Convexity {
+  std::once_flag once;
+  nurbs::ConvexityVerdict verdict;
+};
+
 NurbsModel::~NurbsModel() = default;
+
+bool NurbsModel::provedConvex(std::string* why) const {
+  std::call_once(convexity_->once, [this] {
+    convexity_->verdict = solid_ ? nurbs::certifyConvexSolid(patches_, orientation_, bounds_.diagonal())
+                                 : nurbs::ConvexityVerdict{false, "an open surface set is not a solid"};
+  });
+  if (why) *why = convexity_->verdict.reason;
+  return convexity_->verdict.proved;
+}
 
 std::array<bool, 2> NurbsModel::findPeriodic(const NurbsSurface& s) const {
   const double size = bounds_.diagonal();

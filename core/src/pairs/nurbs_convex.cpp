@@ -2,6 +2,7 @@
 
 #include "convex/gjk.h"
 #include "generic/translation_depth.h"
+#include "pairs/convex_pair.h"
 #include "nurbs/patch_tree.h"
 #include "unidist/nurbs.h"
 
@@ -131,6 +132,11 @@ DistanceResult nurbsConvex(const PosedModel& a, const PosedModel& b, const Query
   const bool meet = s.best < 0;
   if (meet || contained) {
     if (ctx.overlapVerdictOnly) return overlapVerdict();
+    if (m.provedConvex()) {  // two convex solids: the depth is their support functions' (GJK/EPA)
+      DistanceResult r = convexPair(a, b, ctx);
+      r.method = "gjk-epa-proved-convex";
+      return r;
+    }
     OverlapSeed seed = seedOverlap(a, b, ctx);
     deepenSeed(a, b, ctx.tolerance, seed);
     DistanceResult r = translationalDepth(a, b, ctx, seed);

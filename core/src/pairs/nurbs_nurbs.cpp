@@ -9,6 +9,7 @@
 #include "nurbs/support_ball.h"
 #include "nurbs/support_bound.h"
 #include "nurbs/support_tube.h"
+#include "pairs/convex_pair.h"
 #include "unidist/nurbs.h"
 
 #include <algorithm>
@@ -485,6 +486,16 @@ class PairSearch {
   std::priority_queue<OpenPair, std::vector<OpenPair>, std::greater<OpenPair>> open_;
 };
 
+/// Solids whose surfaces meet or cross: both proved convex, GJK/EPA on their support maps (the depth is the
+/// minimum of their Minkowski difference's support function); otherwise the generic translation-depth search.
+DistanceResult meeting(const PosedModel& a, const PosedModel& b, const QueryContext& ctx) {
+  if (!static_cast<const NurbsModel&>(a.model).provedConvex() || !static_cast<const NurbsModel&>(b.model).provedConvex())
+    return genericPair(a, b, ctx);
+  DistanceResult r = convexPair(a, b, ctx);
+  r.method = "gjk-epa-proved-convex";
+  return r;
+}
+
 }  // namespace
 
 DistanceResult nurbsNurbs(const PosedModel& a, const PosedModel& b, const QueryContext& ctx) {
@@ -496,13 +507,13 @@ DistanceResult nurbsNurbs(const PosedModel& a, const PosedModel& b, const QueryC
   const auto& cornerA = ma.forest().roots.front()->corners[0];
   const auto& cornerB = mb.forest().roots.front()->corners[0];
   if (insideSolid(mb, X_AB.inverse() * cornerA) || insideSolid(ma, X_AB * cornerB))
-    return ctx.overlapVerdictOnly ? overlapVerdict() : genericPair(a, b, ctx);
+    return ctx.overlapVerdictOnly ? overlapVerdict() : meeting(a, b, ctx);
   PairSearch search(ma, mb, X_AB, ctx.tolerance, ctx.overlapVerdictOnly);
   const Outcome outcome = search.run();
   // An exhausted search whose lower bound is still positive has proved the surfaces apart too.
   const bool surfacesApart = outcome != Outcome::Touching && search.lower() > 0;
   if (ctx.overlapVerdictOnly && outcome == Outcome::Touching) return notProvedApart(search.best());
-  if (!surfacesApart) return genericPair(a, b, ctx);
+  if (!surfacesApart) return meeting(a, b, ctx);
 
   DistanceResult r;
   r.method = "nurbs-nurbs-cones-newton";
