@@ -1,8 +1,8 @@
 // Penetration depth of NURBS solids proved convex (GJK/EPA on their support maps) against independent truth:
 // rational ellipsoids in any orientation against the minimum of their analytic support functions
 // (depth = min over unit n of h_A(n) + h_B(−n)), from the deepest overlap to touching, at scales 1e-4 to 1e4;
-// a NURBS ball against a box primitive against its closed form. Every answer certified, its bounds holding
-// the truth, within the tolerance.
+// a NURBS ball against a box primitive and a sphere primitive (one point query) against their closed forms.
+// Every answer certified, its bounds holding the truth, within the tolerance.
 #include "bench/ellipsoid_truth.h"
 #include "nurbs_fixtures.h"
 #include "unidist/distance.h"
@@ -72,6 +72,20 @@ TEST(NurbsConvexDepth, BallsFromDeepToTouching) {
     if (gap < 1.9) {
       EXPECT_GT(r.normal.dot(centre.normalized()), 1 - 1e-6);  // B leaves along the centres' line
     }
+  }
+}
+
+TEST(NurbsConvexDepth, SpherePrimitiveDeepInANurbsBallIsOnePointQuery) {
+  const NurbsModel ball({nurbs_fixtures::sphereSurface(1)}, true);
+  const Sphere probe(0.3);
+  for (double offset : {0.05, 0.5, 0.9, 1.2}) {
+    Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+    X.translation() = offset * Vec(0, 0.6, 0.8);
+    const DistanceResult r = distance(probe, X, ball, Eigen::Isometry3d::Identity(), DistanceOptions{});
+    SCOPED_TRACE(offset);
+    EXPECT_EQ(r.status, Status::Certified);
+    EXPECT_EQ(r.method, "sphere-point-query");
+    EXPECT_NEAR(r.distance, offset - 1.3, 1e-9);
   }
 }
 
