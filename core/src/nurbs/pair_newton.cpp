@@ -86,11 +86,9 @@ PairHit polishPair(const RationalBezierPatch& a, const RationalBezierPatch& b, c
     for (int k = 0; k < kDampings && !accepted; ++k, mu = (mu == 0 ? 1e-6 * scale : 10 * mu)) {
       Eigen::Matrix4d Md = M;
       Md.diagonal().array() += mu;
-      // Cholesky: it fails exactly where the step would not descend (not positive definite), and costs a
-      // tenth of a pivoting LDLT on a 4 × 4 (an eighth of the polish's instructions before).
-      const Eigen::LLT<Eigen::Matrix4d> llt(Md);
-      if (llt.info() != Eigen::Success) continue;
-      Eigen::Vector4d delta = -llt.solve(g);
+      const Eigen::LDLT<Eigen::Matrix4d> ldlt(Md);
+      if (ldlt.info() != Eigen::Success || !ldlt.isPositive()) continue;
+      Eigen::Vector4d delta = -ldlt.solve(g);
       delta = delta.cwiseProduct(free);
       if (!delta.allFinite()) continue;
       const Eigen::Vector4d trial = (x + delta).cwiseMax(0.0).cwiseMin(1.0);
