@@ -3,11 +3,13 @@
 // and of a capped cylinder), at any scale; refused, naming the condition, for a torus and a dented sphere
 // (curving toward the outward normal), a sphere with a point of a seam pulled in (creases folding outward), a
 // can with a sunk conical top, two separate balls in one model, and open surfaces.
+#include "nurbs/convex_support.h"
 #include "nurbs_fixtures.h"
 #include "unidist/nurbs.h"
 
 #include <gtest/gtest.h>
 
+#include <random>
 #include <string>
 #include <vector>
 
@@ -88,6 +90,35 @@ TEST(NurbsConvexity, NonConvexSolidsAreRefusedWithTheReason) {
   EXPECT_NE(whyNot(twoBalls).find("not connected"), std::string::npos);
   EXPECT_NE(whyNot(NurbsModel({nurbs_fixtures::sphereSurface()}, false)).find("open"), std::string::npos);
   EXPECT_FALSE(NurbsModel({nurbs_fixtures::wavySurface()}, false).provedConvex());
+}
+
+// The support map of proved-convex models (nurbs/convex_support.h: the highest corner when it tops the control
+// points, else a local ascent) against the analytic support of an ellipsoid and a box, in random directions and
+// along the axes (where the support lies on a seam, a pole or a vertex), at three scales.
+TEST(NurbsConvexity, ConvexSupportIsTheSupport) {
+  std::mt19937 rng(5);
+  std::normal_distribution<double> g;
+  for (double scale : {1e-4, 1.0, 1e4}) {
+    const Eigen::Vector3d axes = scale * Eigen::Vector3d(1.0, 0.6, 0.35), half = scale * Eigen::Vector3d(1, 2, 0.5);
+    const NurbsModel ellipsoid({mappedSphere(1, [&](const Eigen::Vector3d& p, int, int) {
+                                 return Eigen::Vector3d(axes.cwiseProduct(p));
+                               })},
+                               true);
+    const NurbsModel box(nurbs_fixtures::boxPatches(half), true);
+    ASSERT_TRUE(ellipsoid.provedConvex() && box.provedConvex());
+    std::vector<Eigen::Vector3d> directions;
+    for (int k = 0; k < 3; ++k)
+      for (double sign : {1.0, -1.0}) directions.push_back(sign * Eigen::Vector3d::Unit(k));
+    for (int k = 0; k < 500; ++k) directions.push_back(Eigen::Vector3d(g(rng), g(rng), g(rng)).normalized());
+    for (const Eigen::Vector3d& d : directions) {
+      SCOPED_TRACE(::testing::Message() << "scale " << scale << " d " << d.transpose());
+      const double ellipsoidTruth = axes.cwiseProduct(d).norm(), boxTruth = half.dot(d.cwiseAbs());
+      EXPECT_NEAR(d.dot(nurbs::convexSupport(ellipsoid, d)), ellipsoidTruth, 1e-13 * scale);
+      EXPECT_NEAR(d.dot(ellipsoid.support(d)), ellipsoidTruth, 1e-12 * scale);
+      EXPECT_NEAR(d.dot(nurbs::convexSupport(box, d)), boxTruth, 1e-13 * scale);
+      EXPECT_NEAR(d.dot(box.support(d)), boxTruth, 1e-13 * scale);
+    }
+  }
 }
 
 }  // namespace

@@ -35,8 +35,10 @@
 //    outside, (p − q)/|p − q| inside, the surface normal when q is on the surface; open: unsigned distance.
 //  * localBounds(): the box of the Euclidean control points (exact for the sphere/torus/cylinder forms,
 //    conservative for free-form patches).
-//  * support(d): a surface point maximising d·p, by the same best-first search (bound: max d·P over the
-//    subpatch's control points, the convex hull property; Newton on survivors), to 1e-13 x the model size.
+//  * support(d): a surface point maximising d·p: the highest patch corner when it is as high as the highest
+//    control point (exact, by the convex hull property: an axis direction on a revolved sphere or a box), else by
+//    the same best-first search (bound: max d·P over the subpatch's control points; Newton on survivors), to
+//    1e-13 x the model size.
 //    Being on the surface, it is the support point of the convex hull of the surface within that tolerance.
 //  * surfaceCells(): one cell per Bézier patch (face = patch index, parameter box [0,1]^2 of the patch);
 //    splitCell quarters the box (the subpatch net is cut from the patch net directly). Centre and radius:

@@ -2,6 +2,7 @@
 #include "unidist/nurbs.h"
 
 #include "lod/tessellate.h"
+#include "nurbs/convex_support.h"
 #include "nurbs/convexity_certificate.h"
 #include "nurbs/objectives.h"
 #include "nurbs/patch_search.h"
@@ -15,6 +16,7 @@
 #include <limits>
 #include <memory_resource>
 #include <mutex>
+#include <optional>
 
 namespace unidist {
 namespace {
@@ -428,6 +430,10 @@ bool NurbsModel::insideAtBoundary(const nurbs::PatchHit& h, const Eigen::Vector3
 Eigen::Vector3d NurbsModel::support(const Eigen::Vector3d& dir_M) const {
   const double n = dir_M.norm();
   if (!(n > 0)) return forest_->roots.front()->corners[0];
+  // The surface lies in its control points' hull: where the highest control point is a patch corner (a surface
+  // point), it is the support point exactly — an axis direction on a revolved sphere, torus or box (a seam, a
+  // pole or a vertex), where the search below must refine to 1e-13 about a point many patches share.
+  if (const std::optional<Eigen::Vector3d> corner = nurbs::highestCornerIfTop(*forest_, dir_M)) return *corner;
   const double size = bounds_.diagonal();
   return nurbs::minimise(*forest_, patches_, nurbs::SupportObjective(dir_M / n, size), kRelativeTolerance * size, 0)
       .best.point;

@@ -14,4 +14,11 @@ DistanceResult fromConvex(const ConvexDistance& c, const char* method);
 /// tolerance and GJK/EPA converged.
 DistanceResult convexPair(const PosedModel& a, const PosedModel& b, const QueryContext& ctx);
 
+/// The same on given world-frame support maps (a NURBS solid proved convex answers by a local ascent,
+/// nurbs/convex_support.h, where its model's support() is a global search).
+DistanceResult convexPairOfSupports(const SupportFn& supportA, const SupportFn& supportB, const QueryContext& ctx);
+
+/// The world-frame support map of a posed model: NurbsModel's proved convex ones by nurbs::convexSupport.
+SupportFn supportMapOf(const PosedModel& m);
+
 }  // namespace unidist::detail

@@ -133,7 +133,7 @@ DistanceResult nurbsConvex(const PosedModel& a, const PosedModel& b, const Query
   if (meet || contained) {
     if (ctx.overlapVerdictOnly) return overlapVerdict();
     if (m.provedConvex()) {  // two convex solids: the depth is their support functions' (GJK/EPA)
-      DistanceResult r = convexPair(a, b, ctx);
+      DistanceResult r = convexPairOfSupports(supportMapOf(a), supportMapOf(b), ctx);
       r.method = "gjk-epa-proved-convex";
       return r;
     }

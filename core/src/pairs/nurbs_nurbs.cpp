@@ -492,7 +492,7 @@ class PairSearch {
 DistanceResult meeting(const PosedModel& a, const PosedModel& b, const QueryContext& ctx) {
   if (!static_cast<const NurbsModel&>(a.model).provedConvex() || !static_cast<const NurbsModel&>(b.model).provedConvex())
     return genericPair(a, b, ctx);
-  DistanceResult r = convexPair(a, b, ctx);
+  DistanceResult r = convexPairOfSupports(supportMapOf(a), supportMapOf(b), ctx);
   r.method = "gjk-epa-proved-convex";
   return r;
 }
