@@ -280,37 +280,49 @@ ConvexityVerdict certifyConvexSolid(const std::vector<RationalBezierPatch>& patc
       return refuse("patch " + std::to_string(k) + " is saddle-shaped somewhere");
   }
 
-  // Every edge with length meets one other edge along the same polygon; the crease there folds inward.
+  // Every edge with length meets one other edge along the same polygon; the crease there folds inward. Edges are
+  // sorted by the smaller x of their two ends (the same for a partner either way round), so each is compared
+  // only with those within the matching distance of it.
   const double tol = kEdgeMatch * size;
-  std::vector<std::array<std::vector<Eigen::Vector4d>, 4>> edges(patches.size());
-  std::vector<std::array<bool, 4>> pole(patches.size());
+  struct Edge {
+    std::size_t patch;
+    int side;
+    std::vector<Eigen::Vector4d> polygon;
+    double key;
+  };
+  std::vector<Edge> edges;
   for (std::size_t k = 0; k < patches.size(); ++k)
     for (int e = 0; e < 4; ++e) {
-      edges[k][static_cast<std::size_t>(e)] = edgePolygon(patches[k], e);
-      pole[k][static_cast<std::size_t>(e)] = collapsed(edges[k][static_cast<std::size_t>(e)], tol);
+      std::vector<Eigen::Vector4d> polygon = edgePolygon(patches[k], e);
+      if (collapsed(polygon, tol)) continue;  // a pole: no crease
+      const double key = std::min(polygon.front()[0] / polygon.front()[3], polygon.back()[0] / polygon.back()[3]);
+      edges.push_back({k, e, std::move(polygon), key});
     }
+  std::sort(edges.begin(), edges.end(), [](const Edge& a, const Edge& b) { return a.key < b.key; });
   std::vector<int> parent(patches.size());
   std::iota(parent.begin(), parent.end(), 0);
-  for (std::size_t k = 0; k < patches.size(); ++k)
-    for (int e = 0; e < 4; ++e) {
-      if (pole[k][static_cast<std::size_t>(e)]) continue;
-      int partners = 0;
-      for (std::size_t j = 0; j < patches.size(); ++j)
-        for (int f = 0; f < 4; ++f) {
-          if ((j == k && f == e) || pole[j][static_cast<std::size_t>(f)]) continue;
-          const int way = sameCurve(edges[k][static_cast<std::size_t>(e)], edges[j][static_cast<std::size_t>(f)], tol);
-          if (way == 0) continue;
-          ++partners;
-          const Net4 across = inwardDerivative(forms[j].net, f);
-          const Form crease = dot(restrictTo(forms[k].cross, e), way == 1 ? across : reversed(across));
-          if (!provedNonNegative(crease, kSlack * crease.magnitude))
-            return refuse(edgeName(k, e) + " folds outward where it meets " + edgeName(j, f));
-          join(parent, static_cast<int>(k), static_cast<int>(j));
-        }
-      if (partners != 1)
-        return refuse(edgeName(k, e) + (partners == 0 ? " meets no other edge along the same control polygon"
-                                                       : " meets more than one other edge"));
+  for (std::size_t n = 0; n < edges.size(); ++n) {
+    const Edge& a = edges[n];
+    int partners = 0;
+    const auto nearby = [&](std::size_t m) { return std::abs(edges[m].key - a.key) <= tol; };
+    std::size_t first = n;
+    while (first > 0 && nearby(first - 1)) --first;
+    for (std::size_t m = first; m < edges.size() && (m <= n || nearby(m)); ++m) {
+      if (m == n) continue;
+      const Edge& b = edges[m];
+      const int way = sameCurve(a.polygon, b.polygon, tol);
+      if (way == 0) continue;
+      ++partners;
+      const Net4 across = inwardDerivative(forms[b.patch].net, b.side);
+      const Form crease = dot(restrictTo(forms[a.patch].cross, a.side), way == 1 ? across : reversed(across));
+      if (!provedNonNegative(crease, kSlack * crease.magnitude))
+        return refuse(edgeName(a.patch, a.side) + " folds outward where it meets " + edgeName(b.patch, b.side));
+      join(parent, static_cast<int>(a.patch), static_cast<int>(b.patch));
     }
+    if (partners != 1)
+      return refuse(edgeName(a.patch, a.side) + (partners == 0 ? " meets no other edge along the same control polygon"
+                                                               : " meets more than one other edge"));
+  }
   for (std::size_t k = 1; k < patches.size(); ++k)
     if (findRoot(parent, static_cast<int>(k)) != findRoot(parent, 0)) return refuse("the surface is not connected");
   return {true, ""};
