@@ -77,8 +77,12 @@ std::optional<SupportBall> SupportBall::fit(const SeparatorContact& contact) {
   if (!(d > 0)) return std::nullopt;
   const Eigen::Vector3d n = gap / d;
   double spreadA = 0, spreadB = 0;
-  const double kA = leastCurvatureAway(patchA, xA, n, &spreadA);
-  const double kB = leastCurvatureAway(patchB, xB, -(X_AB.linear().transpose() * n), &spreadB);
+  // Curvatures about each surface's own normal: at a gap of 1e-8 of the size the segment's direction is off by
+  // ~1e-8 rad, which leaks that much of the second derivatives' tangential part into them (a unit sphere's read
+  // 1 − 1.4e-8, its ball then off-centre by as much and no circle of minima certified below that).
+  const Eigen::Vector3d nB = -(X_AB.linear().transpose() * n);
+  const double kA = leastCurvatureAway(patchA, xA, unitNormalNear(patchA, xA, n), &spreadA);
+  const double kB = leastCurvatureAway(patchB, xB, unitNormalNear(patchB, xB, nB), &spreadB);
   if (!std::isfinite(kA) || !std::isfinite(kB)) return std::nullopt;
   // The inner side needs a strictly convex contact; the outer side may curve toward it by less than the larger
   // ball (both convex is the support plane's case). A ball that barely fits leaves no margin for the

@@ -35,6 +35,8 @@ constexpr double kSameEnd = 1e-9;   // Newton ends this close in parameters are 
 constexpr double kFirstRegion = 1.0 / 32;  // the first convexity box tried around a Newton end (patch parameters)
 constexpr int kRegionAttempts = 5;
 constexpr double kSplitBothRatio = 0.5;  // the smaller node's ball at least this fraction of the larger's
+constexpr double kEscapeAlongNormal = 0.1;
+constexpr double kFinerProof = 1e-14;  // a touching gap above this fraction of the size is proved apart by a finer search  // an escape direction must leave A's touching point at least this steeply
 
 using Node = nurbs::PatchNode;
 
@@ -523,6 +525,65 @@ bool overlapWitnessed(const PosedModel& a, const PosedModel& b, const QueryConte
   return seedOverlap(a, b, ctx).provedDepth > ctx.tolerance;
 }
 
+/// Are the solids proved interior-disjoint with B posed at X_AB (A's frame)? No patch corner of either inside the
+/// other (containment) and the surfaces proved apart by the search at `tolerance`.
+bool provedApart(const NurbsModel& ma, const NurbsModel& mb, const Eigen::Isometry3d& X_AB, double tolerance) {
+  if (insideSolid(mb, X_AB.inverse() * ma.forest().roots.front()->corners[0]) ||
+      insideSolid(ma, X_AB * mb.forest().roots.front()->corners[0]))
+    return false;
+  PairSearch search(ma, mb, X_AB, tolerance, true);
+  return search.run() != Outcome::Touching && search.lower() > 0;
+}
+
+/// Surfaces touching (within half the tolerance): B moved by half the tolerance along a direction in which the
+/// solids are then proved apart bounds the penetration depth by that, so the signed distance lies in
+/// [−tol/2, gap]: certified touching; failing that, a finer search proves a realised gap above rounding. Directions tried: A's outward normal at the touching point, the line of the
+/// models' centres, A's and B's axes both ways (a ball resting in a ring's hole touches along a circle and leaves
+/// along the ring's axis, not along any one contact's normal). Empty when none is proved apart (the solids may
+/// cross): the generic routine answers.
+std::optional<DistanceResult> settleTouching(const PosedModel& a, const PosedModel& b, const QueryContext& ctx,
+                                               const Eigen::Vector3d& pA_M, const Eigen::Vector3d& pB_M, double gap) {
+  const auto& ma = static_cast<const NurbsModel&>(a.model);
+  const auto& mb = static_cast<const NurbsModel&>(b.model);
+  DistanceResult r;
+  r.pointA = a.toWorld(pA_M);
+  r.pointB = a.toWorld(pB_M);
+  r.distance = r.upperBound = gap;
+  const Eigen::Vector3d outward = a.dirToWorld(ma.closestPoint(pA_M).normal);
+  std::vector<Eigen::Vector3d> directions = {outward, b.toWorld(mb.localBoundingSphere().center) -
+                                                          a.toWorld(ma.localBoundingSphere().center)};
+  for (int k = 0; k < 3; ++k)
+    for (double sign : {1.0, -1.0}) {
+      directions.push_back(sign * a.X_WM.linear().col(k));
+      directions.push_back(sign * b.X_WM.linear().col(k));
+    }
+  const double step = 0.5 * ctx.tolerance;
+  for (Eigen::Vector3d m : directions) {
+    if (!(m.norm() > 0)) continue;
+    m.normalize();
+    if (!(m.dot(outward) > kEscapeAlongNormal)) continue;  // into A at the known contact
+    const Eigen::Isometry3d X_WB = Eigen::Translation3d(step * m) * b.X_WM;
+    if (!provedApart(ma, mb, a.X_WM.inverse() * X_WB, ctx.tolerance / 16)) continue;
+    r.method = "nurbs-nurbs-touching-escape";
+    r.normal = m;  // the way B moves to separate
+    r.lowerBound = -step;
+    settleStatus(r, ctx.tolerance);
+    return r;
+  }
+  // No escape, but a realised gap above rounding: a search at a quarter of it proves the surfaces apart, and the
+  // signed distance then lies in [0, gap] (a ball in a ring's hole 1e-9 from it at a tolerance of 1e-6, where no
+  // short translation frees it: it touches all round).
+  const Eigen::Isometry3d X_AB = a.X_WM.inverse() * b.X_WM;
+  if (gap >= kFinerProof * ma.localBounds().diagonal() && provedApart(ma, mb, X_AB, 0.25 * gap)) {
+    r.method = "nurbs-nurbs-cones-newton";
+    r.normal = (r.pointB - r.pointA) / gap;
+    r.lowerBound = 0;
+    settleStatus(r, ctx.tolerance);
+    return r;
+  }
+  return std::nullopt;
+}
+
 }  // namespace
 
 DistanceResult nurbsNurbs(const PosedModel& a, const PosedModel& b, const QueryContext& ctx) {
@@ -541,6 +602,9 @@ DistanceResult nurbsNurbs(const PosedModel& a, const PosedModel& b, const QueryC
   const bool surfacesApart = outcome != Outcome::Touching && search.lower() > 0;
   if (ctx.overlapVerdictOnly && outcome == Outcome::Touching)
     return overlapWitnessed(a, b, ctx) ? overlapVerdict() : notProvedApart(search.best());
+  if (outcome == Outcome::Touching)
+    if (std::optional<DistanceResult> r = settleTouching(a, b, ctx, search.pointA(), search.pointB(), search.best()))
+      return *r;
   if (!surfacesApart) return meeting(a, b, ctx);
 
   DistanceResult r;
