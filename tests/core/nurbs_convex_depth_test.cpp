@@ -84,7 +84,7 @@ TEST(NurbsConvexDepth, SpherePrimitiveDeepInANurbsBallIsOnePointQuery) {
     const DistanceResult r = distance(probe, X, ball, Eigen::Isometry3d::Identity(), DistanceOptions{});
     SCOPED_TRACE(offset);
     EXPECT_EQ(r.status, Status::Certified);
-    EXPECT_EQ(r.method, "sphere-point-query");
+    EXPECT_STREQ(r.method, "sphere-point-query");
     EXPECT_NEAR(r.distance, offset - 1.3, 1e-9);
   }
 }
