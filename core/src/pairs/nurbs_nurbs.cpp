@@ -505,14 +505,21 @@ DistanceResult meeting(const PosedModel& a, const PosedModel& b, const QueryCont
 /// none is found inside (touching, or an overlap too thin to see): the caller then measures in full, which used to
 /// be the only way (the whole translation-depth search: 0.5 s for crossing tori, where a point inside takes
 /// microseconds).
-bool overlapWitnessed(const PosedModel& a, const PosedModel& b, const QueryContext& ctx) {
-  const auto& ma = static_cast<const NurbsModel&>(a.model);
-  const auto& mb = static_cast<const NurbsModel&>(b.model);
-  const Eigen::Isometry3d X_AB = a.X_WM.inverse() * b.X_WM, X_BA = X_AB.inverse();
+/// Whether a distinct patch corner of either model lies inside the other (B posed at X_AB in A's frame).
+bool cornerInside(const NurbsModel& ma, const NurbsModel& mb, const Eigen::Isometry3d& X_AB) {
+  const Eigen::Isometry3d X_BA = X_AB.inverse();
   for (const nurbs::PatchForest::Corner& c : ma.forest().distinctCorners)
     if (insideSolid(mb, X_BA * c.point)) return true;
   for (const nurbs::PatchForest::Corner& c : mb.forest().distinctCorners)
     if (insideSolid(ma, X_AB * c.point)) return true;
+  return false;
+}
+
+bool overlapWitnessed(const PosedModel& a, const PosedModel& b, const QueryContext& ctx) {
+  const auto& ma = static_cast<const NurbsModel&>(a.model);
+  const auto& mb = static_cast<const NurbsModel&>(b.model);
+  const Eigen::Isometry3d X_AB = a.X_WM.inverse() * b.X_WM, X_BA = X_AB.inverse();
+  if (cornerInside(ma, mb, X_AB)) return true;
   constexpr int kGrid = 4;  // interior grid points per patch side
   for (int i = 1; i <= kGrid; ++i)
     for (int j = 1; j <= kGrid; ++j) {
@@ -602,7 +609,9 @@ DistanceResult nurbsNurbs(const PosedModel& a, const PosedModel& b, const QueryC
   const bool surfacesApart = outcome != Outcome::Touching && search.lower() > 0;
   if (ctx.overlapVerdictOnly && outcome == Outcome::Touching)
     return overlapWitnessed(a, b, ctx) ? overlapVerdict() : notProvedApart(search.best());
-  if (outcome == Outcome::Touching)
+  // Touching or crossing: two convex solids go to EPA, which settles both; others try the escapes first, unless a
+  // patch corner inside the other shows them crossing (the escapes' searches would then be spent for nothing).
+  if (outcome == Outcome::Touching && !(ma.provedConvex() && mb.provedConvex()) && !cornerInside(ma, mb, X_AB))
     if (std::optional<DistanceResult> r = settleTouching(a, b, ctx, search.pointA(), search.pointB(), search.best()))
       return *r;
   if (!surfacesApart) return meeting(a, b, ctx);
