@@ -572,7 +572,9 @@ std::optional<DistanceResult> settleTouching(const PosedModel& a, const PosedMod
     const Eigen::Isometry3d X_WB = Eigen::Translation3d(step * m) * b.X_WM;
     if (!provedApart(ma, mb, a.X_WM.inverse() * X_WB, ctx.tolerance / 16)) continue;
     r.method = "nurbs-nurbs-touching-escape";
-    r.normal = m;  // the way B moves to separate
+    // The contract ties the normal to the points (point_b − point_a = distance · normal); only where they coincide
+    // is it free, and then the way B leaves is the one worth giving.
+    r.normal = gap > 0 ? Eigen::Vector3d((r.pointB - r.pointA) / gap) : m;
     r.lowerBound = -step;
     settleStatus(r, ctx.tolerance);
     return r;
