@@ -2,6 +2,7 @@
 
 #include "convex/gjk.h"
 #include "generic/translation_depth.h"
+#include "pairs/analytic.h"
 #include "pairs/convex_pair.h"
 #include "nurbs/patch_tree.h"
 #include "unidist/nurbs.h"
@@ -36,7 +37,10 @@ struct Search {
   Eigen::Vector3d pA = Eigen::Vector3d::Zero(), pB = Eigen::Vector3d::Zero(), nB = Eigen::Vector3d::UnitZ();
   double lowerOfClosed = std::numeric_limits<double>::infinity();  // nodes not split further (depth cap)
   double lowerOpen = std::numeric_limits<double>::infinity();
+  double lowerPlane = -std::numeric_limits<double>::infinity();  // the supporting planes' bound, where tried
   int iterations = 0;
+  /// The proved lower bound: the open and closed nodes', or the planes' where it is higher (it holds for all).
+  double lower() const { return std::max(lowerPlane, std::min(lowerOpen, lowerOfClosed)); }
 };
 
 class NodeBounds {
@@ -101,9 +105,18 @@ Search closestSubpatch(const NurbsModel& m, const PosedModel& bInA, double toler
   };
   for (const auto& root : m.forest().roots) visit(root.get());
   int popped = 0;
+  bool planeTried = false;
+  const PosedModel aInA{m, Eigen::Isometry3d::Identity()};
   while (!open.empty()) {
     const OpenNode top = open.top();
     if (top.lower >= s.best - 0.5 * tolerance || s.best < 0 || popped >= kNodeBudget) break;
+    // Touching: the supporting planes across the contact normal may settle every node at once. A torus resting on
+    // a box touches it along a circle, which the hulls' bounds would refine node by node (1.1 s, then bounded).
+    if (!planeTried && s.best <= 0.5 * tolerance) {
+      planeTried = true;
+      s.lowerPlane = supportGapLowerBound(aInA, bInA, -s.nB);
+      if (s.lowerPlane >= s.best - 0.5 * tolerance) break;
+    }
     open.pop();
     ++popped;
     ++s.iterations;
@@ -144,7 +157,7 @@ DistanceResult nurbsConvex(const PosedModel& a, const PosedModel& b, const Query
     capAtContact(r, ctx.tolerance);  // the interiors meet: distance <= 0 is proved
     return r;
   }
-  return separationFromPoints(a, s.pA, s.pB, -s.nB, std::min(s.lowerOpen, s.lowerOfClosed), s.iterations,
+  return separationFromPoints(a, s.pA, s.pB, -s.nB, s.lower(), s.iterations,
                               "nurbs-convex-tree-gjk", ctx.tolerance);
 }
 

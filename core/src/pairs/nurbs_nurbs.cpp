@@ -10,6 +10,7 @@
 #include "nurbs/support_ball.h"
 #include "nurbs/support_bound.h"
 #include "nurbs/support_tube.h"
+#include "pairs/analytic.h"
 #include "pairs/convex_pair.h"
 #include "unidist/nurbs.h"
 
@@ -542,8 +543,8 @@ bool provedApart(const NurbsModel& ma, const NurbsModel& mb, const Eigen::Isomet
   return search.run() != Outcome::Touching && search.lower() > 0;
 }
 
-/// Surfaces touching (within half the tolerance): B moved by half the tolerance along a direction in which the
-/// solids are then proved apart bounds the penetration depth by that, so the signed distance lies in
+/// Surfaces touching (within half the tolerance): the supporting planes across A's normal at the touching point
+/// when they meet, else B moved by half the tolerance along a direction in which the solids are then proved apart bounds the penetration depth by that, so the signed distance lies in
 /// [−tol/2, gap]: certified touching; failing that, a finer search proves a realised gap above rounding. Directions tried: A's outward normal at the touching point, the line of the
 /// models' centres, A's and B's axes both ways (a ball resting in a ring's hole touches along a circle and leaves
 /// along the ring's axis, not along any one contact's normal). Empty when none is proved apart (the solids may
@@ -557,6 +558,14 @@ std::optional<DistanceResult> settleTouching(const PosedModel& a, const PosedMod
   r.pointB = a.toWorld(pB_M);
   r.distance = r.upperBound = gap;
   const Eigen::Vector3d outward = a.dirToWorld(ma.closestPoint(pA_M).normal);
+  // The supporting planes across A's normal there first: two tori stacked touch along a circle in one plane.
+  if (const double plane = supportGapLowerBound(a, b, outward); plane >= gap - ctx.tolerance) {
+    r.method = "nurbs-nurbs-touching-plane";
+    r.normal = gap > 0 ? Eigen::Vector3d((r.pointB - r.pointA) / gap) : outward;
+    r.lowerBound = std::min(plane, gap);
+    settleStatus(r, ctx.tolerance);
+    return r;
+  }
   std::vector<Eigen::Vector3d> directions = {outward, b.toWorld(mb.localBoundingSphere().center) -
                                                           a.toWorld(ma.localBoundingSphere().center)};
   for (int k = 0; k < 3; ++k)
