@@ -26,6 +26,8 @@ using Models = std::vector<std::shared_ptr<const Model>>;
 
 constexpr double kTolerance = 1e-9;
 
+constexpr int kNurbsBall = 2, kBox = 5, kCapsule = 6;  // indices in freshModels()
+
 /// One of each representation, none of which has built anything yet.
 Models freshModels() {
   std::vector<Vec> cloud;
@@ -77,6 +79,17 @@ std::vector<Query> queries(int modelCount) {
       out.push_back(q);
     }
   }
+  // Overlaps of the NURBS ball (proved convex on first use, which the threads race to decide) with itself, the box
+  // and the capsule: EPA on its support map.
+  for (int b : {kNurbsBall, kBox, kCapsule})
+    for (int k = 0; k < 3; ++k) {
+      Query q;
+      q.a = kNurbsBall;
+      q.b = b;
+      q.X_WB = Eigen::Translation3d(Vec(u(rng), u(rng), u(rng)).normalized() * 0.6) *
+               Eigen::AngleAxisd(3 * u(rng), Vec(u(rng), u(rng), u(rng)).normalized());
+      out.push_back(q);
+    }
   return out;
 }
 
