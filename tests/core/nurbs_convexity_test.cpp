@@ -3,6 +3,7 @@
 // and of a capped cylinder), at any scale; refused, naming the condition, for a torus and a dented sphere
 // (curving toward the outward normal), a sphere with a point of a seam pulled in (creases folding outward), a
 // can with a sunk conical top, two separate balls in one model, and open surfaces.
+#include "bench/ellipsoid_truth.h"
 #include "nurbs/convex_support.h"
 #include "nurbs_fixtures.h"
 #include "unidist/nurbs.h"
@@ -54,9 +55,7 @@ TEST(NurbsConvexity, ConvexSolidsAreProvedAtEveryScale) {
     std::string why;
     const NurbsModel sphere({nurbs_fixtures::sphereSurface(scale)}, true);
     EXPECT_TRUE(sphere.provedConvex(&why)) << why;
-    const NurbsModel ellipsoid(
-        {mappedSphere(scale, [](const Eigen::Vector3d& p, int, int) { return Eigen::Vector3d(2 * p.x(), p.y(), 0.3 * p.z()); })},
-        true);
+    const NurbsModel ellipsoid({ellipsoid_truth::surface(scale * Eigen::Vector3d(2, 1, 0.3))}, true);
     EXPECT_TRUE(ellipsoid.provedConvex(&why)) << why;
     const NurbsModel box(nurbs_fixtures::boxPatches(Eigen::Vector3d(1, 2, 0.5) * scale), true);
     EXPECT_TRUE(box.provedConvex(&why)) << why;
@@ -100,10 +99,7 @@ TEST(NurbsConvexity, ConvexSupportIsTheSupport) {
   std::normal_distribution<double> g;
   for (double scale : {1e-4, 1.0, 1e4}) {
     const Eigen::Vector3d axes = scale * Eigen::Vector3d(1.0, 0.6, 0.35), half = scale * Eigen::Vector3d(1, 2, 0.5);
-    const NurbsModel ellipsoid({mappedSphere(1, [&](const Eigen::Vector3d& p, int, int) {
-                                 return Eigen::Vector3d(axes.cwiseProduct(p));
-                               })},
-                               true);
+    const NurbsModel ellipsoid({ellipsoid_truth::surface(axes)}, true);
     const NurbsModel box(nurbs_fixtures::boxPatches(half), true);
     ASSERT_TRUE(ellipsoid.provedConvex() && box.provedConvex());
     std::vector<Eigen::Vector3d> directions;

@@ -3,6 +3,7 @@
 // combine for a pair.
 #include "core/mesh_fixtures.h"
 #include "core/nurbs_fixtures.h"
+#include "bench/nurbs_truth.h"
 #include "core/query_helpers.h"
 #include "unidist/distance.h"
 #include "unidist/mesh.h"
@@ -112,6 +113,9 @@ TEST(Overlap, CrossingNurbsToriAreDecidedByAPointInside) {
                               pose(-1.524, 0.487, 0.629, 0.433, 0.733, 0.179, -0.493),
                               pose(0.825, -0.387, 1.080, 0.668, -0.293, 0.682, -0.049),
                               pose(-1.756, -0.077, 0.394, 0.852, -0.238, -0.443, -0.147), at(Vector3d(1.9, 0, 0))}) {
+    // Truth: solid tori of tube radius 0.25 overlap where their core circles come closer than 0.5.
+    const nurbs_truth::Circle core{Vector3d::Zero(), Vector3d::UnitZ(), 1.0};
+    ASSERT_LT(nurbs_truth::circleCircle(core, {X.translation(), X.linear() * Vector3d::UnitZ(), 1.0}), 0.5);
     const auto r = unidist::distance(torus, Isometry3d::Identity(), torus, X, o);
     EXPECT_LE(r.upperBound, 0);
     EXPECT_EQ(r.status, Status::Certified);

@@ -64,7 +64,8 @@ bool ascend(const RationalBezierPatch& patch, const Eigen::Vector3d& d, Eigen::V
 }
 
 /// One pass over the patches' Euclidean control points (the forest roots'): the highest overall, the highest patch
-/// corner, and the patches with the highest control points (their best one's indices), highest first.
+/// corner, and, when asked (`withStarts`), the patches with the highest control points (their best one's
+/// indices), highest first.
 struct Scan {
   struct Start {
     double height;
@@ -75,7 +76,7 @@ struct Scan {
   Eigen::Vector3d cornerPoint = Eigen::Vector3d::Zero();
   std::array<Start, kPatchesTried> starts;
 
-  Scan(const PatchForest& forest, const Eigen::Vector3d& d) {
+  Scan(const PatchForest& forest, const Eigen::Vector3d& d, bool withStarts) {
     starts.fill({-std::numeric_limits<double>::infinity(), 0, 0, 0});
     const Eigen::Vector3d absD = d.cwiseAbs();
     for (std::size_t k = 0; k < forest.roots.size(); ++k) {
@@ -94,7 +95,7 @@ struct Scan {
           }
         }
       top = std::max(top, best.height);
-      if (best.height <= starts.back().height) continue;
+      if (!withStarts || best.height <= starts.back().height) continue;
       starts.back() = best;
       std::sort(starts.begin(), starts.end(), [](const Start& a, const Start& b) { return a.height > b.height; });
     }
@@ -106,13 +107,13 @@ struct Scan {
 }  // namespace
 
 std::optional<Eigen::Vector3d> highestCornerIfTop(const PatchForest& forest, const Eigen::Vector3d& d) {
-  const Scan scan(forest, d);
+  const Scan scan(forest, d, false);
   if (scan.cornerIsTop()) return scan.cornerPoint;
   return std::nullopt;
 }
 
 Eigen::Vector3d convexSupport(const NurbsModel& model, const Eigen::Vector3d& d) {
-  const Scan scan(model.forest(), d);
+  const Scan scan(model.forest(), d, true);
   if (scan.cornerIsTop()) return scan.cornerPoint;
   // The ascent on the highest few patches in turn: a maximum on a seam ends every one of them on its edge, and
   // the global search answers.

@@ -6,18 +6,19 @@
 #include "unidist/nurbs.h"
 
 #include <optional>
-#include <vector>
 
 namespace unidist::nurbs {
 
-/// The support point of `model` (proved convex) in direction d (model frame, any length > 0): Newton's ascent of
-/// d·S on the patch holding the highest control point, from that control point's Greville parameters. Where the
-/// ascent ends on the patch's edge or without a negative definite Hessian of d·S (a pole, a seam, a crease, a flat
-/// face), the model's global search answers instead.
+/// The support point of `model` (proved convex) in direction d (model frame, any length > 0): the highest patch
+/// corner when it tops every control point (highestCornerIfTop), else a Levenberg–Newton ascent of d·S on the
+/// three patches with the highest control points, each from its best one's Greville parameters. Where every
+/// ascent ends on a patch edge or without a negative definite Hessian of d·S (a pole, a seam, a flat face), the
+/// model's global search answers instead.
 Eigen::Vector3d convexSupport(const NurbsModel& model, const Eigen::Vector3d& d);
 
-/// For any model (its forest's roots: the patches' Euclidean control points): the patch corner that is as high along d as the highest control point (to rounding), if one is.
-/// The surface lies in the control points' hull, so that corner is then a support point exactly.
+/// For any model (its forest's roots hold the patches' Euclidean control points): the patch corner as high along d
+/// as the highest control point (to rounding), if one is. The surface lies in the control points' hull, so that
+/// corner is then a support point exactly.
 std::optional<Eigen::Vector3d> highestCornerIfTop(const PatchForest& forest, const Eigen::Vector3d& d);
 
 }  // namespace unidist::nurbs

@@ -15,7 +15,8 @@ constexpr int kMaxSplits = 12;        // halvings per form (alternating u and v)
 constexpr double kEdgeMatch = 1e-9;   // edges' control points this close (× size) are one edge
 
 /// A polynomial in tensor Bernstein form of degree (p, q), coefficients u-major, with the magnitude of the
-/// products it sums (the scale of its rounding).
+/// products it sums (the scale of its rounding). Its own product and halving: the forms here reach degree
+/// 8n − 4, beyond the fixed-size tables of bernstein_product.h and ratio_subdivision.cpp (degree kMaxNurbsDegree).
 struct Form {
   int p = 0, q = 0;
   std::vector<double> c;
@@ -177,7 +178,7 @@ bool provedNonNegative(const Form& f, double slack, int splits = 0) {
   return provedNonNegative(halves[0], slack, splits + 1) && provedNonNegative(halves[1], slack, splits + 1);
 }
 
-/// One patch's outward-oriented cross C and its edge cross-derivatives.
+/// One patch's homogeneous net and its outward-oriented cross C (kept for the creases along its edges).
 struct PatchForms {
   Net4 net, cross;
 };

@@ -1,7 +1,7 @@
 #include "pairs/analytic.h"
 
 #include "convex/segments.h"
-#include "unidist/nurbs.h"
+#include "pairs/convex_pair.h"
 #include "unidist/primitives.h"
 
 #include <cmath>
@@ -67,9 +67,7 @@ DistanceResult sphereAny(const PosedModel& sphereModel, const PosedModel& other,
   r.method = "sphere-point-query";
   markExact(r, c_W.norm() + radius + std::abs(s.signedDistance));
   // For a non-convex solid, depth of the centre only bounds the penetration (another part may block the exit).
-  // A NURBS solid proved convex counts as convex (its support map is a search, so isConvex() stays false).
-  const auto* nurbs = dynamic_cast<const NurbsModel*>(&other.model);
-  exact = other.model.isConvex() || r.distance >= 0 || (nurbs && nurbs->provedConvex());
+  exact = r.distance >= 0 || convexSolid(other.model);
   return r;
 }
 

@@ -39,7 +39,13 @@ DistanceResult convexPairOfSupports(const SupportFn& supportA, const SupportFn& 
 
 DistanceResult convexPair(const PosedModel& a, const PosedModel& b, const QueryContext& ctx) {
   return convexPairOfSupports([&a](const Eigen::Vector3d& d) { return a.supportWorld(d); },
-                    [&b](const Eigen::Vector3d& d) { return b.supportWorld(d); }, ctx);
+                              [&b](const Eigen::Vector3d& d) { return b.supportWorld(d); }, ctx);
+}
+
+bool convexSolid(const Model& m) {
+  if (m.isConvex()) return true;
+  const auto* nurbs = dynamic_cast<const NurbsModel*>(&m);
+  return nurbs && nurbs->provedConvex();
 }
 
 SupportFn supportMapOf(const PosedModel& m) {

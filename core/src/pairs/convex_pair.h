@@ -18,6 +18,10 @@ DistanceResult convexPair(const PosedModel& a, const PosedModel& b, const QueryC
 /// nurbs/convex_support.h, where its model's support() is a global search).
 DistanceResult convexPairOfSupports(const SupportFn& supportA, const SupportFn& supportB, const QueryContext& ctx);
 
+/// A convex solid: a model that says so (isConvex(): primitives, convex meshes), or a NURBS solid proved convex
+/// (its support map being a search, NurbsModel keeps isConvex() false).
+bool convexSolid(const Model& m);
+
 /// The world-frame support map of a posed model: NurbsModel's proved convex ones by nurbs::convexSupport.
 SupportFn supportMapOf(const PosedModel& m);
 

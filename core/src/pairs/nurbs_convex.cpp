@@ -2,9 +2,9 @@
 
 #include "convex/gjk.h"
 #include "generic/translation_depth.h"
+#include "nurbs/patch_tree.h"
 #include "pairs/analytic.h"
 #include "pairs/convex_pair.h"
-#include "nurbs/patch_tree.h"
 #include "unidist/nurbs.h"
 
 #include <algorithm>
@@ -145,7 +145,7 @@ DistanceResult nurbsConvex(const PosedModel& a, const PosedModel& b, const Query
   const bool meet = s.best < 0;
   if (meet || contained) {
     if (ctx.overlapVerdictOnly) return overlapVerdict();
-    if (m.provedConvex()) {  // two convex solids: the depth is their support functions' (GJK/EPA)
+    if (convexSolid(m)) {  // two convex solids (B is): the depth is their support functions' (GJK/EPA)
       DistanceResult r = convexPairOfSupports(supportMapOf(a), supportMapOf(b), ctx);
       r.method = "gjk-epa-proved-convex";
       return r;

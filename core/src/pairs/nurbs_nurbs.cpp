@@ -36,8 +36,8 @@ constexpr double kSameEnd = 1e-9;   // Newton ends this close in parameters are 
 constexpr double kFirstRegion = 1.0 / 32;  // the first convexity box tried around a Newton end (patch parameters)
 constexpr int kRegionAttempts = 5;
 constexpr double kSplitBothRatio = 0.5;  // the smaller node's ball at least this fraction of the larger's
-constexpr double kEscapeAlongNormal = 0.1;
-constexpr double kFinerProof = 1e-14;  // a touching gap above this fraction of the size is proved apart by a finer search  // an escape direction must leave A's touching point at least this steeply
+constexpr double kEscapeAlongNormal = 0.1;  // an escape direction must leave A's touching point at least this steeply
+constexpr double kFinerProof = 1e-14;  // a touching gap above this fraction of the size is proved by a finer search
 
 using Node = nurbs::PatchNode;
 
@@ -125,6 +125,8 @@ class PairSearch {
   }
   const Eigen::Vector3d& pointA() const { return best_.pA; }
   const Eigen::Vector3d& pointB() const { return best_.pB; }
+  /// A's outward unit normal at the best pair's point on A (A's frame).
+  Eigen::Vector3d normalA() const { return a_.patchNormal(best_.patchA, best_.x[0], best_.x[1]); }
   int iterations() const { return iterations_; }
 
  private:
@@ -493,19 +495,19 @@ class PairSearch {
 /// Solids whose surfaces meet or cross: both proved convex, GJK/EPA on their support maps (the depth is the
 /// minimum of their Minkowski difference's support function); otherwise the generic translation-depth search.
 DistanceResult meeting(const PosedModel& a, const PosedModel& b, const QueryContext& ctx) {
-  if (!static_cast<const NurbsModel&>(a.model).provedConvex() || !static_cast<const NurbsModel&>(b.model).provedConvex())
-    return genericPair(a, b, ctx);
+  if (!convexSolid(a.model) || !convexSolid(b.model)) return genericPair(a, b, ctx);
   DistanceResult r = convexPairOfSupports(supportMapOf(a), supportMapOf(b), ctx);
   r.method = "gjk-epa-proved-convex";
   return r;
 }
 
-/// Surfaces within the tolerance of each other in a verdict-only query: the solids overlap when a point of one
-/// lies inside the other. Tried: every distinct patch corner of each model, then a grid of points on every patch,
-/// then the deepest points of a short search of each surface through the other's field (seedOverlap). False when
-/// none is found inside (touching, or an overlap too thin to see): the caller then measures in full, which used to
-/// be the only way (the whole translation-depth search: 0.5 s for crossing tori, where a point inside takes
-/// microseconds).
+/// Whether the first patch corner of either model lies inside the other (B posed at X_AB in A's frame): with
+/// the surfaces apart, the one way the solids can still overlap is containment, which this tells.
+bool firstCornerInside(const NurbsModel& ma, const NurbsModel& mb, const Eigen::Isometry3d& X_AB) {
+  return insideSolid(mb, X_AB.inverse() * ma.forest().roots.front()->corners[0]) ||
+         insideSolid(ma, X_AB * mb.forest().roots.front()->corners[0]);
+}
+
 /// Whether a distinct patch corner of either model lies inside the other (B posed at X_AB in A's frame).
 bool cornerInside(const NurbsModel& ma, const NurbsModel& mb, const Eigen::Isometry3d& X_AB) {
   const Eigen::Isometry3d X_BA = X_AB.inverse();
@@ -516,6 +518,12 @@ bool cornerInside(const NurbsModel& ma, const NurbsModel& mb, const Eigen::Isome
   return false;
 }
 
+/// Surfaces within the tolerance of each other in a verdict-only query: the solids overlap when a point of one
+/// lies inside the other. Tried: every distinct patch corner of each model, then a grid of points on every patch,
+/// then the deepest points of a short search of each surface through the other's field (seedOverlap). False when
+/// none is found inside (touching, or an overlap too thin to see): the caller then measures in full, which used to
+/// be the only way (the whole translation-depth search: 0.5 s for crossing tori, where a point inside takes
+/// microseconds).
 bool overlapWitnessed(const PosedModel& a, const PosedModel& b, const QueryContext& ctx) {
   const auto& ma = static_cast<const NurbsModel&>(a.model);
   const auto& mb = static_cast<const NurbsModel&>(b.model);
@@ -536,28 +544,30 @@ bool overlapWitnessed(const PosedModel& a, const PosedModel& b, const QueryConte
 /// Are the solids proved interior-disjoint with B posed at X_AB (A's frame)? No patch corner of either inside the
 /// other (containment) and the surfaces proved apart by the search at `tolerance`.
 bool provedApart(const NurbsModel& ma, const NurbsModel& mb, const Eigen::Isometry3d& X_AB, double tolerance) {
-  if (insideSolid(mb, X_AB.inverse() * ma.forest().roots.front()->corners[0]) ||
-      insideSolid(ma, X_AB * mb.forest().roots.front()->corners[0]))
-    return false;
+  if (firstCornerInside(ma, mb, X_AB)) return false;
   PairSearch search(ma, mb, X_AB, tolerance, true);
   return search.run() != Outcome::Touching && search.lower() > 0;
 }
 
-/// Surfaces touching (within half the tolerance): the supporting planes across A's normal at the touching point
-/// when they meet, else B moved by half the tolerance along a direction in which the solids are then proved apart bounds the penetration depth by that, so the signed distance lies in
-/// [−tol/2, gap]: certified touching; failing that, a finer search proves a realised gap above rounding. Directions tried: A's outward normal at the touching point, the line of the
-/// models' centres, A's and B's axes both ways (a ball resting in a ring's hole touches along a circle and leaves
-/// along the ring's axis, not along any one contact's normal). Empty when none is proved apart (the solids may
-/// cross): the generic routine answers.
+/// Surfaces touching (within half the tolerance: the search's realised gap), certified by the first of:
+///  * the supporting planes across A's outward normal at the touching point, when their gap is within the
+///    tolerance (two tori stacked touch along a circle in one plane);
+///  * an escape: B moved by half the tolerance and then proved apart bounds the depth by that, so the signed
+///    distance lies in [−tol/2, gap]. Directions: A's outward normal there, the line of the models' centres, A's
+///    and B's axes both ways (a ball resting in a ring's hole touches along a circle and leaves along the ring's
+///    axis, not along any one contact's normal);
+///  * a finer search proving a realised gap above rounding.
+/// Empty when none does (the solids may cross): the generic routine answers.
 std::optional<DistanceResult> settleTouching(const PosedModel& a, const PosedModel& b, const QueryContext& ctx,
-                                               const Eigen::Vector3d& pA_M, const Eigen::Vector3d& pB_M, double gap) {
+                                             const PairSearch& search) {
   const auto& ma = static_cast<const NurbsModel&>(a.model);
   const auto& mb = static_cast<const NurbsModel&>(b.model);
+  const double gap = search.best();
   DistanceResult r;
-  r.pointA = a.toWorld(pA_M);
-  r.pointB = a.toWorld(pB_M);
+  r.pointA = a.toWorld(search.pointA());
+  r.pointB = a.toWorld(search.pointB());
   r.distance = r.upperBound = gap;
-  const Eigen::Vector3d outward = a.dirToWorld(ma.closestPoint(pA_M).normal);
+  const Eigen::Vector3d outward = a.dirToWorld(search.normalA());
   // The supporting planes across A's normal there first: two tori stacked touch along a circle in one plane.
   if (const double plane = supportGapLowerBound(a, b, outward); plane >= gap - ctx.tolerance) {
     r.method = "nurbs-nurbs-touching-plane";
@@ -610,9 +620,7 @@ DistanceResult nurbsNurbs(const PosedModel& a, const PosedModel& b, const QueryC
   const Eigen::Isometry3d X_AB = a.X_WM.inverse() * b.X_WM;
   // A point of either model inside the other proves the overlap (apart surfaces overlap only so): the surface
   // search is spared (see insideSolid).
-  const auto& cornerA = ma.forest().roots.front()->corners[0];
-  const auto& cornerB = mb.forest().roots.front()->corners[0];
-  if (insideSolid(mb, X_AB.inverse() * cornerA) || insideSolid(ma, X_AB * cornerB))
+  if (firstCornerInside(ma, mb, X_AB))
     return ctx.overlapVerdictOnly ? overlapVerdict() : meeting(a, b, ctx);
   PairSearch search(ma, mb, X_AB, ctx.tolerance, ctx.overlapVerdictOnly);
   const Outcome outcome = search.run();
@@ -622,8 +630,8 @@ DistanceResult nurbsNurbs(const PosedModel& a, const PosedModel& b, const QueryC
     return overlapWitnessed(a, b, ctx) ? overlapVerdict() : notProvedApart(search.best());
   // Touching or crossing: two convex solids go to EPA, which settles both; others try the escapes first, unless a
   // patch corner inside the other shows them crossing (the escapes' searches would then be spent for nothing).
-  if (outcome == Outcome::Touching && !(ma.provedConvex() && mb.provedConvex()) && !cornerInside(ma, mb, X_AB))
-    if (std::optional<DistanceResult> r = settleTouching(a, b, ctx, search.pointA(), search.pointB(), search.best()))
+  if (outcome == Outcome::Touching && !(convexSolid(ma) && convexSolid(mb)) && !cornerInside(ma, mb, X_AB))
+    if (std::optional<DistanceResult> r = settleTouching(a, b, ctx, search))
       return *r;
   if (!surfacesApart) return meeting(a, b, ctx);
 
