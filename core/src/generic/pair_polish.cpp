@@ -70,7 +70,12 @@ struct Projector {
 
 }  // namespace
 
-void polishSeparation(const PosedModel& a, const PosedModel& b, DistanceResult& r, double tolerance) {
+bool nurbsSolids(const PosedModel& a, const PosedModel& b) {
+  return a.model.type() == ModelType::Nurbs && a.model.isSolid() && b.model.type() == ModelType::Nurbs &&
+         b.model.isSolid();
+}
+
+void polishAcrossPatches(const PosedModel& a, const PosedModel& b, DistanceResult& r, double tolerance) {
   if (!(r.lowerBound > 0) || !(r.distance > 0)) return;
   if (a.model.type() != ModelType::Nurbs && b.model.type() != ModelType::Nurbs) return;
   // Bounds already within rounding of each other (2e-13 of the NURBS model's size): the polish could not move the
@@ -98,6 +103,12 @@ void polishSeparation(const PosedModel& a, const PosedModel& b, DistanceResult& 
   }
   r.upperBound = std::min(r.upperBound, r.distance);
   settleStatus(r, tolerance);
+}
+
+void polishSeparation(const PosedModel& a, const PosedModel& b, DistanceResult& r, double tolerance) {
+  // Two NURBS solids meet in the NURBS–NURBS search (dispatch.cpp), whose best pair is a pair-Newton end: a
+  // stationary point already, unless it lies on a patch edge, where that routine polishes it itself.
+  if (!nurbsSolids(a, b)) polishAcrossPatches(a, b, r, tolerance);
 }
 
 }  // namespace unidist::detail

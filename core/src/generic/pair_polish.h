@@ -9,8 +9,15 @@
 
 namespace unidist::detail {
 
+/// Both NURBS solids: their answers come polished from their own routine, and polishSeparation leaves them.
+bool nurbsSolids(const PosedModel& a, const PosedModel& b);
+
 /// Improves a separated answer (r.lowerBound > 0) in place: points, distance, normal, upper bound. The bounds stay
 /// proved (every pair it keeps is a pair of realised surface points); the status is settled against `tolerance`.
 void polishSeparation(const PosedModel& a, const PosedModel& b, DistanceResult& r, double tolerance);
+
+/// polishSeparation for every pair, two NURBS solids included: the NURBS–NURBS routine's own call, where its best
+/// pair lies on a patch edge (a Newton run clamped there; the local minimum may lie across the seam).
+void polishAcrossPatches(const PosedModel& a, const PosedModel& b, DistanceResult& r, double tolerance);
 
 }  // namespace unidist::detail

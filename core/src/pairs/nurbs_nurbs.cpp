@@ -2,6 +2,7 @@
 
 #include "cloud/point_support.h"
 #include "generic/generic_distance.h"
+#include "generic/pair_polish.h"
 #include "generic/translation_depth.h"
 #include "nurbs/hull_distance.h"
 #include "nurbs/pair_convexity.h"
@@ -125,6 +126,10 @@ class PairSearch {
   }
   const Eigen::Vector3d& pointA() const { return best_.pA; }
   const Eigen::Vector3d& pointB() const { return best_.pB; }
+  /// Does the best pair lie on a patch edge of either model (a Newton run clamped there)?
+  bool bestOnPatchEdge() const {
+    return (best_.x.array() <= 0).any() || (best_.x.array() >= 1).any();
+  }
   /// A's outward unit normal at the best pair's point on A (A's frame).
   Eigen::Vector3d normalA() const { return a_.patchNormal(best_.patchA, best_.x[0], best_.x[1]); }
   int iterations() const { return iterations_; }
@@ -646,6 +651,9 @@ DistanceResult nurbsNurbs(const PosedModel& a, const PosedModel& b, const QueryC
   r.upperBound = r.distance;
   r.lowerBound = std::min(search.lower(), r.distance);
   settleStatus(r, ctx.tolerance);
+  // Inside both patches the best pair is a stationary point of the distance; on a patch edge the local minimum
+  // may lie across the seam, where the local projections follow it.
+  if (search.bestOnPatchEdge()) polishAcrossPatches(a, b, r, ctx.tolerance);
   return r;
 }
 
