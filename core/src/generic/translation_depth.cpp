@@ -43,6 +43,7 @@ class DepthSearch {
   DepthSearch(const PosedModel& a, const PosedModel& b, const QueryContext& ctx) : a_(a), b_(b), ctx_(ctx) {
     verdict_ = ctx;
     verdict_.overlapVerdictOnly = true;
+    verdict_.apartProofOnly = true;
     verdict_.tolerance = ctx.tolerance / 16;  // so a gap of a quarter tolerance can still be proved
   }
 
@@ -247,7 +248,7 @@ struct OpenCone {
 }  // namespace
 
 DistanceResult translationalDepth(const PosedModel& a, const PosedModel& b, const QueryContext& ctx,
-                                  const OverlapSeed& seed) {
+                                  const OverlapSeed& seed, DepthScope scope) {
   const double tol = ctx.tolerance;
   DepthSearch search(a, b, ctx);
   const long budget = 3L * std::max(1000, ctx.maxIterations);  // in point queries (cost())
@@ -264,7 +265,7 @@ DistanceResult translationalDepth(const PosedModel& a, const PosedModel& b, cons
   // leaves through A's far side); the line between the models' centres is the other natural first guess.
   const Eigen::Vector3d centres = b.toWorld(b.model.localBoundingSphere().center) -
                                   a.toWorld(a.model.localBoundingSphere().center);
-  if (centres.norm() > 0 && search.mayBeat(centres.normalized(), best.length))
+  if (scope == DepthScope::Full && centres.norm() > 0 && search.mayBeat(centres.normalized(), best.length))
     consider(search.polishedExit(centres.normalized(), seed.deepPoint));
 
   double provedDepth = std::max(0.0, seed.provedDepth);
@@ -278,7 +279,7 @@ DistanceResult translationalDepth(const PosedModel& a, const PosedModel& b, cons
     const double reached = search.march(c.axis, c.halfAngle, from, x, best.length);
     open.push({c, reached, x});
   };
-  if (best.length - provedDepth > tol) {
+  if (scope == DepthScope::Full && best.length - provedDepth > tol) {
     for (const DirectionCone& c : cubeMapCones(2)) push(c, 0, seed.deepPoint);
     searched = true;
   }
@@ -329,6 +330,7 @@ DistanceResult translationalDepth(const PosedModel& a, const PosedModel& b, cons
 namespace {
 
 constexpr int kDeepenSteps = 200;
+constexpr double kContactNudgeReach = 0.1;  // seedFromContact's starts reach this fraction of the larger model
 
 /// One surface's deepest point inside the other solid, from the surface point nearest `start`.
 /// Returns the depth reached (0 when `start` is not near a point of `surface` inside `solid`).
@@ -370,6 +372,43 @@ void deepenSeed(const PosedModel& a, const PosedModel& b, double tolerance, Over
     seed.deepPoint = p;
     seed.direction = -n;
   }
+}
+
+OverlapSeed seedFromContact(const PosedModel& a, const PosedModel& b, const Eigen::Vector3d& contact_W,
+                            double tolerance) {
+  OverlapSeed seed;
+  seed.deepPoint = contact_W;
+  const double size = std::max(a.model.localBoundingSphere().radius, b.model.localBoundingSphere().radius);
+  // B's surface inside A leaves along A's outward normal; A's surface inside B makes B leave against B's.
+  for (const bool bInA : {true, false}) {
+    const PosedModel& surface = bInA ? b : a;
+    const PosedModel& solid = bInA ? a : b;
+    const Eigen::Vector3d inward = -solid.closestWorld(contact_W).normal;
+    // Where the surfaces cross at a small angle the surface point nearest a start just inside the solid can lie
+    // outside it: the start moves further in until one does.
+    for (double nudge = tolerance; nudge < kContactNudgeReach * size; nudge *= 8) {
+      Eigen::Vector3d p, n;
+      const double d = deepenOn(surface, solid, contact_W + nudge * inward, tolerance, p, n);
+      if (!(d > 0)) continue;
+      if (d > seed.provedDepth) {
+        seed.provedDepth = d;
+        seed.deepPoint = p;
+        seed.direction = bInA ? n : Eigen::Vector3d(-n);
+      }
+      break;
+    }
+  }
+  addPlaneEscapes(a, b, seed);
+  return seed;
+}
+
+std::optional<DistanceResult> shallowDepth(const PosedModel& a, const PosedModel& b, const QueryContext& ctx,
+                                           const Eigen::Vector3d& contact_W) {
+  const OverlapSeed seed = seedFromContact(a, b, contact_W, ctx.tolerance);
+  if (!(seed.provedDepth > 0)) return std::nullopt;
+  DistanceResult r = translationalDepth(a, b, ctx, seed, DepthScope::SeedEscape);
+  if (r.status != Status::Certified) return std::nullopt;
+  return r;
 }
 
 void addPlaneEscapes(const PosedModel& a, const PosedModel& b, OverlapSeed& seed) {

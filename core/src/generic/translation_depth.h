@@ -20,6 +20,8 @@
 
 #include "pairs/pair_query.h"
 
+#include <optional>
+
 namespace unidist::detail {
 
 /// What the caller already knows about the overlap.
@@ -31,10 +33,16 @@ struct OverlapSeed {
   Eigen::Vector3d knownEscapeDirection = Eigen::Vector3d::UnitZ();
 };
 
+/// How much of the search translationalDepth runs.
+enum class DepthScope {
+  Full,        ///< the escapes, then the cone search until the bounds meet or the budget ends
+  SeedEscape,  ///< only the escape from the seed's direction: certified when it meets seed.provedDepth
+};
+
 /// a and b are solids whose interiors are known to overlap. Returns the contract's answer: distance = −depth,
 /// normal = the direction B moves to separate, pointA on A and pointB on B with pointB − pointA = distance·normal.
 DistanceResult translationalDepth(const PosedModel& a, const PosedModel& b, const QueryContext& ctx,
-                                  const OverlapSeed& seed);
+                                  const OverlapSeed& seed, DepthScope scope = DepthScope::Full);
 
 }  // namespace unidist::detail
 
@@ -49,6 +57,20 @@ OverlapSeed seedOverlap(const PosedModel& a, const PosedModel& b, const QueryCon
 /// value is realised (a surface point that deep in the other solid must travel that far to get out), so the
 /// result stays a proved lower bound; sampled surface searches are first order and stop short of it.
 void deepenSeed(const PosedModel& a, const PosedModel& b, double tolerance, OverlapSeed& seed);
+
+/// A seed from a point where the two surfaces meet or cross (within the tolerance): each surface's deepest point
+/// inside the other solid by the same local descent as deepenSeed, started just inside the other solid (along
+/// its inward normal at the contact, further out until a start lies inside), and the supporting-plane escapes.
+/// Local: provedDepth is realised (proved), but it is the global deepest point's only where one lens overlaps.
+OverlapSeed seedFromContact(const PosedModel& a, const PosedModel& b, const Eigen::Vector3d& contact_W,
+                            double tolerance);
+
+/// Solids that meet at contact_W (their surfaces within the tolerance there): the depth certified by the escape
+/// along the normal at the deepest point near the contact alone (seedFromContact; DepthScope::SeedEscape), as in
+/// a shallow overlap, where the escape meets the realised depth; empty when it does not (several overlapping
+/// lenses, a deep non-convex overlap), and the caller runs the full search.
+std::optional<DistanceResult> shallowDepth(const PosedModel& a, const PosedModel& b, const QueryContext& ctx,
+                                           const Eigen::Vector3d& contact_W);
 
 /// Lowers seed.knownEscape by supporting-plane escapes along the axes and seed.direction.
 void addPlaneEscapes(const PosedModel& a, const PosedModel& b, OverlapSeed& seed);

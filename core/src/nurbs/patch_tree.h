@@ -10,6 +10,7 @@
 #include <atomic>
 #include <memory>
 #include <mutex>
+#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -97,19 +98,32 @@ constexpr int kCachedDepth = 7;
 constexpr int kPoleCachedDepth = 20;
 
 /// A value per node made once during one search (a separator's certified extreme), looked up by the node.
+/// A few entries are scanned (a search usually certifies tens of nodes); past that they are hashed, as a search
+/// along a continuum of minima certifies thousands and a scan would make it quadratic.
 class NodeMemo {
  public:
   template <class Make>
   double get(const PatchNode& node, Make&& make) {
-    for (const auto& [key, value] : entries_)
-      if (key == &node) return value;
+    if (hashed_.empty()) {
+      for (const auto& [key, value] : entries_)
+        if (key == &node) return value;
+    } else if (const auto it = hashed_.find(&node); it != hashed_.end()) {
+      return it->second;
+    }
     const double value = make();
-    entries_.emplace_back(&node, value);
+    if (entries_.size() < kScanned) {
+      entries_.emplace_back(&node, value);
+    } else {
+      if (hashed_.empty()) hashed_.insert(entries_.begin(), entries_.end());
+      hashed_.emplace(&node, value);
+    }
     return value;
   }
 
  private:
+  static constexpr std::size_t kScanned = 32;
   std::vector<std::pair<const PatchNode*, double>> entries_;
+  std::unordered_map<const PatchNode*, double> hashed_;
 };
 
 /// Proved: |q − x| >= this for every point x of the node's subpatch (the distance from q to its frame box).

@@ -150,6 +150,13 @@ DistanceResult nurbsConvex(const PosedModel& a, const PosedModel& b, const Query
       r.method = "gjk-epa-proved-convex";
       return r;
     }
+    // A surface point inside B was found: the escape at the deepest point near it settles a shallow overlap.
+    if (meet)
+      if (std::optional<DistanceResult> r = shallowDepth(a, b, ctx, a.toWorld(s.pA))) {
+        r->iterations += s.iterations;
+        capAtContact(*r, ctx.tolerance);
+        return *r;
+      }
     OverlapSeed seed = seedOverlap(a, b, ctx);
     deepenSeed(a, b, ctx.tolerance, seed);
     DistanceResult r = translationalDepth(a, b, ctx, seed);

@@ -498,19 +498,30 @@ class PairSearch {
 };
 
 /// Solids whose surfaces meet or cross: both proved convex, GJK/EPA on their support maps (the depth is the
-/// minimum of their Minkowski difference's support function); otherwise the generic translation-depth search.
-DistanceResult meeting(const PosedModel& a, const PosedModel& b, const QueryContext& ctx) {
-  if (!convexSolid(a.model) || !convexSolid(b.model)) return genericPair(a, b, ctx);
+/// minimum of their Minkowski difference's support function); otherwise, from a point where the surfaces meet
+/// (contact_W, when the search found one), the escape at the deepest point near it, which settles a shallow
+/// overlap, and else the generic translation-depth search.
+DistanceResult meeting(const PosedModel& a, const PosedModel& b, const QueryContext& ctx,
+                       const std::optional<Eigen::Vector3d>& contact_W = std::nullopt) {
+  if (!convexSolid(a.model) || !convexSolid(b.model)) {
+    if (contact_W && !ctx.overlapVerdictOnly)  // (a verdict goes on to the generic routine's own)
+      if (std::optional<DistanceResult> r = shallowDepth(a, b, ctx, *contact_W)) return *r;
+    return genericPair(a, b, ctx);
+  }
   DistanceResult r = convexPairOfSupports(supportMapOf(a), supportMapOf(b), ctx);
   r.method = "gjk-epa-proved-convex";
   return r;
 }
 
-/// Whether the first patch corner of either model lies inside the other (B posed at X_AB in A's frame): with
-/// the surfaces apart, the one way the solids can still overlap is containment, which this tells.
-bool firstCornerInside(const NurbsModel& ma, const NurbsModel& mb, const Eigen::Isometry3d& X_AB) {
-  return insideSolid(mb, X_AB.inverse() * ma.forest().roots.front()->corners[0]) ||
-         insideSolid(ma, X_AB * mb.forest().roots.front()->corners[0]);
+/// The first patch corner of either model when it lies inside the other (B posed at X_AB; A's frame): with the
+/// surfaces apart, the one way the solids can still overlap is containment, which this tells.
+std::optional<Eigen::Vector3d> firstCornerInside(const NurbsModel& ma, const NurbsModel& mb,
+                                                 const Eigen::Isometry3d& X_AB) {
+  const Eigen::Vector3d& cornerA = ma.forest().roots.front()->corners[0];
+  if (insideSolid(mb, X_AB.inverse() * cornerA)) return cornerA;
+  const Eigen::Vector3d cornerB = X_AB * mb.forest().roots.front()->corners[0];
+  if (insideSolid(ma, cornerB)) return cornerB;
+  return std::nullopt;
 }
 
 /// Whether a distinct patch corner of either model lies inside the other (B posed at X_AB in A's frame).
@@ -625,20 +636,22 @@ DistanceResult nurbsNurbs(const PosedModel& a, const PosedModel& b, const QueryC
   const Eigen::Isometry3d X_AB = a.X_WM.inverse() * b.X_WM;
   // A point of either model inside the other proves the overlap (apart surfaces overlap only so): the surface
   // search is spared (see insideSolid).
-  if (firstCornerInside(ma, mb, X_AB))
-    return ctx.overlapVerdictOnly ? overlapVerdict() : meeting(a, b, ctx);
+  if (const std::optional<Eigen::Vector3d> corner = firstCornerInside(ma, mb, X_AB))
+    return ctx.overlapVerdictOnly ? overlapVerdict() : meeting(a, b, ctx, a.toWorld(*corner));
   PairSearch search(ma, mb, X_AB, ctx.tolerance, ctx.overlapVerdictOnly);
   const Outcome outcome = search.run();
   // An exhausted search whose lower bound is still positive has proved the surfaces apart too.
   const bool surfacesApart = outcome != Outcome::Touching && search.lower() > 0;
   if (ctx.overlapVerdictOnly && outcome == Outcome::Touching)
-    return overlapWitnessed(a, b, ctx) ? overlapVerdict() : notProvedApart(search.best());
+    return !ctx.apartProofOnly && overlapWitnessed(a, b, ctx) ? overlapVerdict() : notProvedApart(search.best());
+  // A search that ran out without proving the surfaces apart: the penetration search's test needs no more.
+  if (ctx.apartProofOnly && !surfacesApart) return notProvedApart(search.best());
   // Touching or crossing: two convex solids go to EPA, which settles both; others try the escapes first, unless a
   // patch corner inside the other shows them crossing (the escapes' searches would then be spent for nothing).
   if (outcome == Outcome::Touching && !(convexSolid(ma) && convexSolid(mb)) && !cornerInside(ma, mb, X_AB))
     if (std::optional<DistanceResult> r = settleTouching(a, b, ctx, search))
       return *r;
-  if (!surfacesApart) return meeting(a, b, ctx);
+  if (!surfacesApart) return meeting(a, b, ctx, a.toWorld(0.5 * (search.pointA() + search.pointB())));
 
   DistanceResult r;
   r.method = "nurbs-nurbs-cones-newton";

@@ -34,6 +34,9 @@ struct QueryContext {
   /// search tests translated copies): a routine may then stop as soon as it has proved an overlap, returning
   /// upperBound <= 0 and an unknown (-inf) lowerBound, instead of measuring the penetration.
   bool overlapVerdictOnly = false;
+  /// With overlapVerdictOnly, set by the penetration search's separation tests: only a proof that the interiors
+  /// are disjoint is of use, so a routine answers notProvedApart instead of spending more to prove an overlap.
+  bool apartProofOnly = false;
 };
 
 /// What a routine returns under overlapVerdictOnly once it has proved the interiors meet.

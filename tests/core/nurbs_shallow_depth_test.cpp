@@ -1,0 +1,91 @@
+// Penetration depth of a non-convex NURBS solid (the exact torus) against balls and a box, settled from the point
+// where the surfaces meet: the deepest point near it and the escape along its normal (translation_depth.h,
+// shallowDepth), with the full translation search behind it where that escape does not meet the depth.
+// Truth: a ball of radius ρ centred at c overlaps the torus (core circle C, tube radius a) by exactly
+// a + ρ − dist(c, C) while c is nearer C than the axis (the ball must leave the tube grown by ρ), along the line
+// from C's nearest point to c; a box face lying across the tube's top overlaps by how far it sinks below the top.
+// Scales 1e-4 to 1e4, random poses, depths from 1e-6 of the size to most of the tube.
+#include "bench/nurbs_truth.h"
+#include "nurbs_fixtures.h"
+#include "unidist/distance.h"
+#include "unidist/nurbs.h"
+#include "unidist/primitives.h"
+
+#include <gtest/gtest.h>
+
+#include <limits>
+#include <random>
+
+namespace unidist {
+namespace {
+
+using Vec = Eigen::Vector3d;
+
+Eigen::Isometry3d randomRotation(std::mt19937& rng) {
+  std::uniform_real_distribution<double> u(-1, 1);
+  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+  X.linear() = Eigen::Quaterniond(Eigen::Vector4d(u(rng), u(rng), u(rng), u(rng)).normalized()).toRotationMatrix();
+  return X;
+}
+
+void expectDepth(const DistanceResult& r, double depth, const Vec& away, double tolerance) {
+  EXPECT_EQ(r.status, Status::Certified) << r.method;
+  EXPECT_LE(r.lowerBound, -depth + 1e-3 * tolerance);
+  EXPECT_GE(r.upperBound, -depth - 1e-3 * tolerance);
+  EXPECT_NEAR(r.distance, -depth, tolerance);
+  EXPECT_GT(r.normal.dot(away), 1 - 1e-6) << "B leaves along the line from the core circle to the ball's centre";
+  const double rounding = 64 * std::numeric_limits<double>::epsilon() * (r.pointA.norm() + r.pointB.norm());
+  EXPECT_NEAR((r.pointB - r.pointA).dot(r.normal), r.distance, rounding);
+}
+
+TEST(NurbsShallowDepth, BallsSunkIntoTheTorusTubeGetTheirExactDepth) {
+  const double R = 1, a = 0.25, rho = 0.4;
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> angle(0, 2 * M_PI);
+  const nurbs_truth::Circle core{Vec::Zero(), Vec::UnitZ(), R};
+  for (double scale : {1e-4, 1.0, 1e4}) {
+    const NurbsModel torus({nurbs_fixtures::torusSurface(R * scale, a * scale)}, true);
+    const NurbsModel ball({nurbs_fixtures::sphereSurface(rho * scale)}, true);
+    const Sphere sphere(rho * scale);
+    DistanceOptions opt;
+    opt.tolerance = 1e-9 * scale;
+    for (double depth : {1e-6, 1e-3, 0.05, 0.3}) {
+      // The ball's centre off the tube at a random place around it (outside, above, inside the hole).
+      const double around = angle(rng), across = angle(rng);
+      const Vec radial(std::cos(around), std::sin(around), 0);
+      const Vec out = std::cos(across) * radial + std::sin(across) * Vec::UnitZ();
+      const Vec c = R * radial + (a + rho - depth) * out;
+      ASSERT_NEAR(nurbs_truth::pointCircle(c, core), a + rho - depth, 1e-12);
+      const Eigen::Isometry3d XA = randomRotation(rng);
+      Eigen::Isometry3d XB = XA;
+      XB.translation() = XA * (scale * c);
+      SCOPED_TRACE(::testing::Message() << "scale " << scale << " depth " << depth << " around " << around
+                                        << " across " << across);
+      expectDepth(distance(torus, XA, ball, XB, opt), depth * scale, XA.linear() * out, opt.tolerance);
+      expectDepth(distance(torus, XA, sphere, XB, opt), depth * scale, XA.linear() * out, opt.tolerance);
+    }
+  }
+}
+
+TEST(NurbsShallowDepth, BoxSunkIntoTheTubeTopGetsItsExactDepth) {
+  const double R = 1, a = 0.25, half = 0.3;
+  std::mt19937 rng(13);
+  for (double scale : {1e-4, 1.0, 1e4}) {
+    const NurbsModel torus({nurbs_fixtures::torusSurface(R * scale, a * scale)}, true);
+    const Box box(scale * Vec(half, half, half));
+    DistanceOptions opt;
+    opt.tolerance = 1e-9 * scale;
+    for (double depth : {1e-6, 1e-3, 0.05}) {
+      // The box's bottom face centred over the tube's top, turned about the vertical.
+      Eigen::Isometry3d X_AB = Eigen::Isometry3d::Identity();
+      X_AB.translate(scale * Vec(0, R, a + half - depth));
+      X_AB.rotate(Eigen::AngleAxisd(0.4, Vec::UnitZ()));
+      const Eigen::Isometry3d XA = randomRotation(rng);
+      SCOPED_TRACE(::testing::Message() << "scale " << scale << " depth " << depth);
+      expectDepth(distance(torus, XA, box, XA * X_AB, opt), depth * scale, XA.linear() * Vec::UnitZ(), opt.tolerance);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace unidist
