@@ -315,8 +315,9 @@ TEST(NurbsNurbs, InterpenetratingToriGetTheExactMinimumTranslation) {
       Eigen::Isometry3d XB = XA;
       XB.translation() += XA.linear() * (p.offset * scale);
       const DistanceResult r = distance(*torus, XA, *torus, XB, opt);
-      // A deep overlap (the deepest point only 0.1 deep for a 0.4 translation) is bracketed by the first-order
-      // cone search: the escape is exact, the lower bound within a few 1e-3 (bounded, never wrong).
+      // A deep overlap (the deepest point only 0.1 deep for a 0.4 translation): the escape is exact; the balls
+      // inscribed in both tubes at its contact prove it where that contact pair is collinear to the tolerance,
+      // else the first-order cone search brackets it within a few 1e-3 (bounded, never wrong).
       if (p.shallow) {
         EXPECT_EQ(r.status, Status::Certified);
       }

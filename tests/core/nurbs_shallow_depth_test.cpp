@@ -4,7 +4,8 @@
 // Truth: a ball of radius ρ centred at c overlaps the torus (core circle C, tube radius a) by exactly
 // a + ρ − dist(c, C) while c is nearer C than the axis (the ball must leave the tube grown by ρ), along the line
 // from C's nearest point to c; a box face lying across the tube's top overlaps by how far it sinks below the top.
-// Scales 1e-4 to 1e4, random poses, depths from 1e-6 of the size to most of the tube.
+// Scales 1e-4 to 1e4, random poses, depths from 1e-6 of the size to most of the tube. And a deep overlap of two
+// tori, where balls inscribed at the escape's contact bound the depth (translation_depth.cpp).
 #include "bench/nurbs_truth.h"
 #include "nurbs_fixtures.h"
 #include "unidist/distance.h"
@@ -83,6 +84,31 @@ TEST(NurbsShallowDepth, BoxSunkIntoTheTubeTopGetsItsExactDepth) {
       const Eigen::Isometry3d XA = randomRotation(rng);
       SCOPED_TRACE(::testing::Message() << "scale " << scale << " depth " << depth);
       expectDepth(distance(torus, XA, box, XA * X_AB, opt), depth * scale, XA.linear() * Vec::UnitZ(), opt.tolerance);
+    }
+  }
+}
+
+// Two tori, one shifted 0.1 along the other's axis through it: the translation separating them is 0.4 (up the
+// axis, the tubes' circles 0.1 apart must get 0.5 apart) while no surface point is deeper than 0.1 in the other
+// solid. Balls inscribed in both tubes at the escape's contact, centred on its normal, prove what the surface
+// points cannot: the bracket closes to within 1e-5 of the size (the cone search alone left it 7e-4 wide).
+TEST(NurbsShallowDepth, InscribedBallsBoundADeepTorusOverlap) {
+  std::mt19937 rng(17);
+  for (double scale : {1e-4, 1.0, 1e4}) {
+    const NurbsModel torus({nurbs_fixtures::torusSurface(scale, 0.25 * scale)}, true);
+    DistanceOptions opt;
+    opt.tolerance = 1e-9 * scale;
+    for (int k = 0; k < 2; ++k) {
+      const Eigen::Isometry3d XA = randomRotation(rng);
+      Eigen::Isometry3d XB = XA;
+      XB.translation() += XA.linear() * Vec(0, 0, 0.1 * scale);
+      SCOPED_TRACE(::testing::Message() << "scale " << scale << " pose " << k);
+      const DistanceResult r = distance(torus, XA, torus, XB, opt);
+      EXPECT_LE(r.lowerBound, -0.4 * scale + 1e-3 * opt.tolerance);
+      EXPECT_GE(r.upperBound, -0.4 * scale - 1e-3 * opt.tolerance);
+      // Certified at scales 1 and 1e4; at 1e-4 the balls' point queries leave it 1.1e-6 of the size wide.
+      EXPECT_LT(r.upperBound - r.lowerBound, 1e-5 * scale);
+      EXPECT_NEAR(r.distance, -0.4 * scale, opt.tolerance);
     }
   }
 }

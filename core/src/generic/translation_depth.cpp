@@ -24,6 +24,7 @@ constexpr int kSeparationTestCost = 20;  // a pair separation test against a poi
 constexpr double kSlidingSuspicion = 0.05;
 constexpr int kLiftedSearchSteps = 10;
 constexpr int kSeedEvaluations = 4000;  // per surface, for seedOverlap
+constexpr double kBallsReach = 1.1;     // inscribed balls' radii sum to this much of the escape they bound
 
 PosedModel movedBy(const PosedModel& b, const Eigen::Vector3d& t) {
   return {b.model, Eigen::Isometry3d(Eigen::Translation3d(t)) * b.X_WM};
@@ -238,6 +239,41 @@ class DepthSearch {
   std::vector<Escape> planes_;  // escapes whose contact planes the crease candidates combine
 };
 
+/// A ball inside the solid tangent at `point` (on its surface; `inward` its inward unit normal there): the proved
+/// radius of the ball about point + radius·inward that lies inside (its centre inside, its distance to the
+/// surface less the point query's error), or 0 where the centre is not inside.
+double inscribedRadius(const PosedModel& solid, const Eigen::Vector3d& point, const Eigen::Vector3d& inward,
+                       double radius) {
+  const SurfacePoint s = solid.closestWorld(point + radius * inward);
+  return s.signedDistance < 0 ? std::max(0.0, -s.signedDistance - s.error) : 0.0;
+}
+
+/// A lower bound on the depth from two balls, one inside each solid, tangent to the surfaces at the escape's
+/// contact pair and centred on its normal: every translation separating the solids separates the balls, whose
+/// depth is r_A + r_B − |c_A − c_B| (exactly the escape's length when both fit: the collinear-normal pair's
+/// penetration, as deep as a ball sunk in a ring's tube, where no surface point is that deep). Radii: shares of
+/// the escape's length (their sum must reach it), each tried until a ball fits; 0 when none does.
+double inscribedBallsBound(const PosedModel& a, const PosedModel& b, const Escape& escape, double tolerance) {
+  if (!escape.hasContact || !std::isfinite(escape.length) || !(escape.length > 0)) return 0;
+  const Eigen::Vector3d n = escape.contactNormal;  // A's outward normal at the contact = B's inward one there
+  if (!(std::abs(n.norm() - 1) < 1e-9)) return 0;
+  const Eigen::Vector3d pA = escape.pointA, pB = escape.pointA - escape.length * escape.direction;
+  // Balls that do not quite fit (a radius past the surface's curvature, or a contact pair not yet collinear)
+  // still bound the depth with the radii they get: the best of the shares is kept, and the first whose balls
+  // both fit ends the tries.
+  double bound = 0;
+  for (const double shareA : {0.55, 0.25, 0.85, 0.1, 0.97}) {
+    const double radiusA = shareA * kBallsReach * escape.length, radiusB = (1 - shareA) * kBallsReach * escape.length;
+    const double rA = inscribedRadius(a, pA, -n, radiusA);
+    if (!(rA > 0)) continue;
+    const double rB = inscribedRadius(b, pB, n, radiusB);
+    const Eigen::Vector3d cA = pA - radiusA * n, cB = pB + radiusB * n;
+    bound = std::max(bound, rA + rB - (cA - cB).norm());
+    if (rA >= radiusA - 0.125 * tolerance && rB >= radiusB - 0.125 * tolerance) break;
+  }
+  return bound;
+}
+
 struct OpenCone {
   DirectionCone cone;
   double provedExit;  // every ray of the cone overlaps up to here
@@ -256,9 +292,12 @@ DistanceResult translationalDepth(const PosedModel& a, const PosedModel& b, cons
   Escape best;
   best.length = seed.knownEscape;
   best.direction = seed.knownEscapeDirection;
+  double provedDepth = std::max(0.0, seed.provedDepth);
   auto consider = [&](const Escape& e) {
     // An escape with its contact points beats a supporting-plane escape (no points) within a quarter tolerance.
-    if (e.length < best.length || (!best.hasContact && e.hasContact && e.length <= best.length + 0.25 * tol)) best = e;
+    if (!(e.length < best.length || (!best.hasContact && e.hasContact && e.length <= best.length + 0.25 * tol))) return;
+    best = e;
+    if (best.length - provedDepth > tol) provedDepth = std::max(provedDepth, inscribedBallsBound(a, b, best, tol));
   };
   consider(search.polishedExit(seed.direction, seed.deepPoint));
   // In a deep overlap the deepest point's normal can point the long way out (B's point nearest A's middle
@@ -268,7 +307,6 @@ DistanceResult translationalDepth(const PosedModel& a, const PosedModel& b, cons
   if (scope == DepthScope::Full && centres.norm() > 0 && search.mayBeat(centres.normalized(), best.length))
     consider(search.polishedExit(centres.normalized(), seed.deepPoint));
 
-  double provedDepth = std::max(0.0, seed.provedDepth);
   std::priority_queue<OpenCone, std::vector<OpenCone>, std::greater<OpenCone>> open;
   bool searched = false;  // whether the cones cover every direction (else only provedDepth is known)
   auto lowerBound = [&] {
