@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Regenerates docs/results/nurbs_vs_occt.{txt,csv}, nurbs_convex_depth.txt and nurbs_tolerance.png: unidist's NURBS queries beside
+# Regenerates docs/results/nurbs_vs_occt.{txt,csv}, nurbs_overlap.txt, nurbs_convex_depth.txt and nurbs_tolerance.png: unidist's NURBS queries beside
 # OpenCASCADE 7.6 (tests/bench/nurbs_vs_occt.cpp), our time and error against the tolerance, and the point
 # query medians beside OpenCASCADE's (nurbs_points.png).
 # usage: tests/bench/run_nurbs_benchmarks.sh [build-dir] [points-per-model]
@@ -19,6 +19,9 @@ if [ "${PLOT_ONLY:-0}" != 1 ]; then
     "$BUILD/tests/bench/unidist_bench_nurbs_vs_occt" "$group" "$POINTS" | tee -a "$OUT/nurbs_vs_occt.txt"
   done
   extract_csv "$OUT/nurbs_vs_occt.txt" > "$OUT/nurbs_vs_occt.csv"
+  # Non-convex NURBS penetration depth by depth band (no peer answers it).
+  cmake --build "$BUILD" --target unidist_bench_nurbs_overlap -j2
+  "$BUILD/tests/bench/unidist_bench_nurbs_overlap" 20 | tee "$OUT/nurbs_overlap.txt"
   # Convex NURBS penetration depth beside FCL's ellipsoids (built where FCL is found).
   if cmake --build "$BUILD" --target unidist_bench_nurbs_convex_depth -j2 >/dev/null 2>&1; then
     "$BUILD/tests/bench/unidist_bench_nurbs_convex_depth" 40 | tee "$OUT/nurbs_convex_depth.txt"
