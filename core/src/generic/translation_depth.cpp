@@ -368,17 +368,21 @@ DistanceResult translationalDepth(const PosedModel& a, const PosedModel& b, cons
 namespace {
 
 constexpr int kDeepenSteps = 200;
-constexpr double kContactNudgeReach = 0.1;  // seedFromContact's starts reach this fraction of the larger model
+constexpr double kCoarseDeepening = 1e-5;  // seedFromContact's first descents stop at this fraction of the size
+constexpr double kContactNudgeReach = 1.0;  // seedFromContact's starts reach as far in as the larger model's radius
 
 /// One surface's deepest point inside the other solid, from the surface point nearest `start`.
 /// Returns the depth reached (0 when `start` is not near a point of `surface` inside `solid`).
+/// `stop`: the step at which the descent ends (default 1e-3 × tolerance); `firstStep`: its first step (default the
+/// start's depth, at least the tolerance).
 double deepenOn(const PosedModel& surface, const PosedModel& solid, const Eigen::Vector3d& start, double tolerance,
-                Eigen::Vector3d& deepest, Eigen::Vector3d& outward) {
+                Eigen::Vector3d& deepest, Eigen::Vector3d& outward, double stop = -1, double firstStep = -1) {
   Eigen::Vector3d p = surface.closestWorld(start).point;
   SurfacePoint in = solid.closestWorld(p);
   if (!(in.signedDistance < 0)) return 0;
-  double step = std::max(-in.signedDistance, tolerance);
-  for (int k = 0; k < kDeepenSteps && step > 1e-3 * tolerance; ++k) {
+  if (!(stop > 0)) stop = 1e-3 * tolerance;
+  double step = firstStep > 0 ? firstStep : std::max(-in.signedDistance, tolerance);
+  for (int k = 0; k < kDeepenSteps && step > stop; ++k) {
     const Eigen::Vector3d q = surface.closestWorld(p - step * in.normal).point;
     const SurfacePoint atQ = solid.closestWorld(q);
     if (atQ.signedDistance < in.signedDistance) {
@@ -417,26 +421,49 @@ OverlapSeed seedFromContact(const PosedModel& a, const PosedModel& b, const Eige
   OverlapSeed seed;
   seed.deepPoint = contact_W;
   const double size = std::max(a.model.localBoundingSphere().radius, b.model.localBoundingSphere().radius);
-  // B's surface inside A leaves along A's outward normal; A's surface inside B makes B leave against B's.
+  // Both descents stop coarse; only the deeper one is refined to the tolerance (the other may be converging on
+  // a solid's medial axis, a torus's core circle, where every point query meets a circle of equal distances).
+  const double coarse = std::max(1e-3 * tolerance, kCoarseDeepening * size);
+  bool deeperIsBInA = true;
+  addPlaneEscapes(a, b, seed);
+  // B's surface inside A leaves along A's outward normal; A's surface inside B makes B leave against B's. A side
+  // as deep as a supporting plane's escape already meets the upper bound: the other is not tried.
   for (const bool bInA : {true, false}) {
+    if (seed.provedDepth >= seed.knownEscape - 0.25 * tolerance) break;
     const PosedModel& surface = bInA ? b : a;
     const PosedModel& solid = bInA ? a : b;
     const Eigen::Vector3d inward = -solid.closestWorld(contact_W).normal;
-    // Where the surfaces cross at a small angle the surface point nearest a start just inside the solid can lie
-    // outside it: the start moves further in until one does.
-    for (double nudge = tolerance; nudge < kContactNudgeReach * size; nudge *= 8) {
+    const auto deepenFrom = [&](const Eigen::Vector3d& start) {
       Eigen::Vector3d p, n;
-      const double d = deepenOn(surface, solid, contact_W + nudge * inward, tolerance, p, n);
-      if (!(d > 0)) continue;
+      const double d = deepenOn(surface, solid, start, tolerance, p, n, coarse);
       if (d > seed.provedDepth) {
         seed.provedDepth = d;
         seed.deepPoint = p;
         seed.direction = bInA ? n : Eigen::Vector3d(-n);
+        deeperIsBInA = bInA;
       }
-      break;
+      return d > 0;
+    };
+    // Where the surfaces cross at a small angle the surface point nearest a start just inside the solid can lie
+    // outside it: the start moves further in until one does. Where none does (the contact's normal is not the way
+    // in: a contact off the solid's surface, a point deep inside it), the surface point nearest the solid's centre
+    // is the start (for a ball, exactly the deepest).
+    bool found = false;
+    for (double nudge = tolerance; nudge < kContactNudgeReach * size && !found; nudge *= 8)
+      found = deepenFrom(contact_W + nudge * inward);
+    if (!found) deepenFrom(solid.toWorld(solid.model.localBoundingSphere().center));
+  }
+  if (seed.provedDepth > 0) {
+    Eigen::Vector3d p, n;
+    const PosedModel& surface = deeperIsBInA ? b : a;
+    const PosedModel& solid = deeperIsBInA ? a : b;
+    if (const double d = deepenOn(surface, solid, seed.deepPoint, tolerance, p, n, -1, 2 * coarse); d > seed.provedDepth) {
+      seed.provedDepth = d;
+      seed.deepPoint = p;
+      seed.direction = deeperIsBInA ? n : Eigen::Vector3d(-n);
     }
   }
-  addPlaneEscapes(a, b, seed);
+  addPlaneEscapes(a, b, seed);  // along the deepest point's normal too
   return seed;
 }
 
