@@ -1,6 +1,7 @@
 #include "nurbs/pair_newton.h"
 
 #include <Eigen/Cholesky>
+#include <Eigen/LU>
 
 #include <algorithm>
 #include <cmath>
@@ -10,6 +11,8 @@ namespace {
 
 constexpr int kSteps = 40;
 constexpr int kDampings = 12;
+constexpr int kCollinearSteps = 20;
+constexpr int kCollinearHalvings = 6;
 
 struct Eval {
   SurfaceDerivatives a, b;  // b already in A's frame
@@ -55,6 +58,52 @@ void derivatives(const Eval& e, Eigen::Vector4d& g, Eigen::Matrix4d& H) {
   H(3, 3) -= r.dot(e.b.dvv);
 }
 
+/// Thomas et al.'s extremal-distance conditions written to stay regular as the distance goes to 0: the segment
+/// orthogonal to A's tangents, B's tangents orthogonal to A's normal N = S_s × S_t. (The gradient of ½|S_A − S_B|²
+/// vanishes with the distance: its Hessian's curvature part shrinks with it, and near contact Newton on it crawls.)
+/// Returns F; J receives its Jacobian in (s, t, u, v).
+Eigen::Vector4d collinearEquations(const Eval& e, Eigen::Matrix4d& J) {
+  const SurfaceDerivatives& a = e.a;
+  const SurfaceDerivatives& b = e.b;
+  const Eigen::Vector3d d = b.point - a.point;
+  const Eigen::Vector3d N = a.du.cross(a.dv);
+  const Eigen::Vector3d Ns = a.duu.cross(a.dv) + a.du.cross(a.duv), Nt = a.duv.cross(a.dv) + a.du.cross(a.dvv);
+  J << -a.du.dot(a.du) + d.dot(a.duu), -a.dv.dot(a.du) + d.dot(a.duv), b.du.dot(a.du), b.dv.dot(a.du),
+      -a.du.dot(a.dv) + d.dot(a.duv), -a.dv.dot(a.dv) + d.dot(a.dvv), b.du.dot(a.dv), b.dv.dot(a.dv),
+      Ns.dot(b.du), Nt.dot(b.du), N.dot(b.duu), N.dot(b.duv),
+      Ns.dot(b.dv), Nt.dot(b.dv), N.dot(b.duv), N.dot(b.dvv);
+  return {d.dot(a.du), d.dot(a.dv), N.dot(b.du), N.dot(b.dv)};
+}
+
+/// Newton on collinearEquations from e (in place), each step kept only where it lowers the distance (halved
+/// otherwise): the end of a descent that ran out of steps next to a contact.
+void collinearPolish(const RationalBezierPatch& pa, const RationalBezierPatch& pb, const Eigen::Isometry3d& X_AB,
+                     Eigen::Vector4d& x, Eval& e, int& evaluations) {
+  for (int step = 0; step < kCollinearSteps; ++step) {
+    Eigen::Matrix4d J;
+    const Eigen::Vector4d F = collinearEquations(e, J);
+    const Eigen::FullPivLU<Eigen::Matrix4d> lu(J);
+    if (!lu.isInvertible()) return;
+    Eigen::Vector4d delta = -lu.solve(F);
+    if (!delta.allFinite()) return;
+    bool accepted = false;
+    for (int halving = 0; halving < kCollinearHalvings && !accepted; ++halving, delta *= 0.5) {
+      const Eigen::Vector4d trial = (x + delta).cwiseMax(0.0).cwiseMin(1.0);
+      if (trial == x) return;
+      const Eval et = evaluate(pa, pb, X_AB, trial);
+      ++evaluations;
+      if (et.value < e.value) {
+        accepted = true;
+        const double moved = (trial - x).cwiseAbs().maxCoeff();
+        x = trial;
+        e = et;
+        if (moved < 1e-14) return;
+      }
+    }
+    if (!accepted) return;
+  }
+}
+
 }  // namespace
 
 PairHit polishPair(const RationalBezierPatch& a, const RationalBezierPatch& b, const Eigen::Isometry3d& X_AB,
@@ -62,6 +111,7 @@ PairHit polishPair(const RationalBezierPatch& a, const RationalBezierPatch& b, c
   Eigen::Vector4d x = x0.cwiseMax(0.0).cwiseMin(1.0);
   Eval e = evaluate(a, b, X_AB, x);
   int evaluations = 1;
+  bool ranOut = true;  // whether the descent used every step without settling
   for (int step = 0; step < kSteps; ++step) {
     Eigen::Vector4d g;
     Eigen::Matrix4d H;
@@ -70,7 +120,10 @@ PairHit polishPair(const RationalBezierPatch& a, const RationalBezierPatch& b, c
     Eigen::Vector4d free = Eigen::Vector4d::Ones();
     for (int k = 0; k < 4; ++k)
       if ((x[k] <= 0 && g[k] > 0) || (x[k] >= 1 && g[k] < 0)) free[k] = 0;
-    if (free.sum() == 0) break;
+    if (free.sum() == 0) {
+      ranOut = false;
+      break;
+    }
     Eigen::Matrix4d M = H;
     for (int k = 0; k < 4; ++k)
       if (free[k] == 0) {
@@ -108,11 +161,18 @@ PairHit polishPair(const RationalBezierPatch& a, const RationalBezierPatch& b, c
         const double moved = (trial - x).cwiseAbs().maxCoeff();
         x = trial;
         e = et;
-        if (moved < 1e-14) step = kSteps;  // converged to rounding level
+        if (moved < 1e-14) {  // converged to rounding level
+          step = kSteps;
+          ranOut = false;
+        }
       }
     }
-    if (!accepted) break;
+    if (!accepted) {
+      ranOut = false;
+      break;
+    }
   }
+  if (ranOut) collinearPolish(a, b, X_AB, x, e, evaluations);
   PairHit hit;
   hit.x = x;
   hit.pA = e.a.point;
