@@ -381,7 +381,7 @@ double deepenOn(const PosedModel& surface, const PosedModel& solid, const Eigen:
   SurfacePoint in = solid.closestWorld(p);
   if (!(in.signedDistance < 0)) return 0;
   if (!(stop > 0)) stop = 1e-3 * tolerance;
-  double step = firstStep > 0 ? firstStep : std::max(-in.signedDistance, tolerance);
+  double step = firstStep > 0 ? firstStep : std::max({-in.signedDistance, tolerance, 2 * stop});
   for (int k = 0; k < kDeepenSteps && step > stop; ++k) {
     const Eigen::Vector3d q = surface.closestWorld(p - step * in.normal).point;
     const SurfacePoint atQ = solid.closestWorld(q);

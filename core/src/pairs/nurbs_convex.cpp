@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <queue>
 #include <vector>
 
@@ -139,8 +140,12 @@ DistanceResult nurbsConvex(const PosedModel& a, const PosedModel& b, const Query
   const PosedModel bInA{b.model, a.X_WM.inverse() * b.X_WM};
   // Containment of B in A (any point of B) or of A in B (any point of A) first: it proves the overlap, which
   // apart surfaces have only then, and it spares the surface search (a sphere centred in a NURBS sphere: 20 s).
-  const bool contained = insideSolid(m, bInA.supportWorld(Eigen::Vector3d::UnitX())) ||
-                         insideSolid(b.model, bInA.toLocal(m.forest().roots.front()->corners[0]));
+  const Eigen::Vector3d supportOfB = bInA.supportWorld(Eigen::Vector3d::UnitX());
+  const Eigen::Vector3d& cornerOfA = m.forest().roots.front()->corners[0];
+  std::optional<Eigen::Vector3d> inside;  // a point of one inside the other (A's frame)
+  if (insideSolid(m, supportOfB)) inside = supportOfB;
+  else if (insideSolid(b.model, bInA.toLocal(cornerOfA))) inside = cornerOfA;
+  const bool contained = inside.has_value();
   const Search s = contained ? Search{} : closestSubpatch(m, bInA, ctx.tolerance);
   const bool meet = s.best < 0;
   if (meet || contained) {
@@ -150,9 +155,10 @@ DistanceResult nurbsConvex(const PosedModel& a, const PosedModel& b, const Query
       r.method = "gjk-epa-proved-convex";
       return r;
     }
-    // A surface point inside B was found: the escape at the deepest point near it settles a shallow overlap.
-    if (meet)
-      if (std::optional<DistanceResult> r = shallowDepth(a, b, ctx, a.toWorld(s.pA))) {
+    // A point of one inside the other was found (a surface point of A inside B, or the containment test's point):
+    // the escape at the deepest point near it settles a shallow overlap.
+    if (meet || contained)
+      if (std::optional<DistanceResult> r = shallowDepth(a, b, ctx, a.toWorld(meet ? s.pA : *inside))) {
         r->iterations += s.iterations;
         capAtContact(*r, ctx.tolerance);
         return *r;
