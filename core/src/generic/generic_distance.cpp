@@ -190,7 +190,8 @@ DistanceResult genericPair(const PosedModel& a, const PosedModel& b, const Query
   // 3. Two solids overlap (a separation test stopped above): the global translation depth, bracketed by
   //    proved bounds.
   OverlapSeed seed;
-  seed.provedDepth = -value;  // the deepest surface point must travel at least its depth
+  // The deepest surface point must travel at least its depth (less the point query's error: its distance is realised).
+  seed.provedDepth = std::max(0.0, -value - onField.error);
   seed.deepPoint = deepest->search.point;
   seed.direction = awayFromA;
   deepenSeed(a, b, tol, seed);

@@ -264,9 +264,11 @@ double inscribedBallsBound(const PosedModel& a, const PosedModel& b, const Escap
   double bound = 0;
   for (const double shareA : {0.55, 0.25, 0.85, 0.1, 0.97}) {
     const double radiusA = shareA * kBallsReach * escape.length, radiusB = (1 - shareA) * kBallsReach * escape.length;
+    // A centre outside its solid (radius 0) holds no ball: there is no bound then.
     const double rA = inscribedRadius(a, pA, -n, radiusA);
     if (!(rA > 0)) continue;
     const double rB = inscribedRadius(b, pB, n, radiusB);
+    if (!(rB > 0)) continue;
     const Eigen::Vector3d cA = pA - radiusA * n, cB = pB + radiusB * n;
     bound = std::max(bound, rA + rB - (cA - cB).norm());
     if (rA >= radiusA - 0.125 * tolerance && rB >= radiusB - 0.125 * tolerance) break;
@@ -293,11 +295,21 @@ DistanceResult translationalDepth(const PosedModel& a, const PosedModel& b, cons
   best.length = seed.knownEscape;
   best.direction = seed.knownEscapeDirection;
   double provedDepth = std::max(0.0, seed.provedDepth);
+  // A supporting plane's escape has a contact too, for the balls: A's support point along it, and the point of B
+  // that the escape brings onto it (two tori stacked by the escape touch along a circle in that plane).
+  if (std::isfinite(best.length) && best.length - provedDepth > tol) {
+    Escape plane = best;
+    plane.pointA = a.supportWorld(plane.direction);
+    plane.contactNormal = plane.direction;
+    plane.hasContact = true;
+    provedDepth = std::max(provedDepth, inscribedBallsBound(a, b, plane, tol));
+  }
   auto consider = [&](const Escape& e) {
+    // Any escape's contact bounds the depth from below (the balls need not be at the shortest escape's).
+    if (e.hasContact && best.length - provedDepth > tol)
+      provedDepth = std::max(provedDepth, inscribedBallsBound(a, b, e, tol));
     // An escape with its contact points beats a supporting-plane escape (no points) within a quarter tolerance.
-    if (!(e.length < best.length || (!best.hasContact && e.hasContact && e.length <= best.length + 0.25 * tol))) return;
-    best = e;
-    if (best.length - provedDepth > tol) provedDepth = std::max(provedDepth, inscribedBallsBound(a, b, best, tol));
+    if (e.length < best.length || (!best.hasContact && e.hasContact && e.length <= best.length + 0.25 * tol)) best = e;
   };
   // A supporting plane's escape that already meets the proved depth needs no search for contact points (a shallow
   // overlap's bisection along a face B slides on, lifted off it in every direction: a third of a second).
@@ -397,7 +409,8 @@ double deepenOn(const PosedModel& surface, const PosedModel& solid, const Eigen:
   }
   deepest = p;
   outward = in.normal;
-  return -in.signedDistance;
+  // Proved: the point query's distance is realised, the true one at most its error less.
+  return std::max(0.0, -in.signedDistance - in.error);
 }
 
 }  // namespace
@@ -479,11 +492,14 @@ std::optional<DistanceResult> shallowDepth(const PosedModel& a, const PosedModel
 }
 
 void addPlaneEscapes(const PosedModel& a, const PosedModel& b, OverlapSeed& seed) {
+  // The world's axes and both models' own (a ring's axis is the way a ring stacked on another leaves).
   std::vector<Eigen::Vector3d> directions = {seed.direction};
-  for (int i = 0; i < 3; ++i) {
-    directions.push_back(Eigen::Vector3d::Unit(i));
-    directions.push_back(-Eigen::Vector3d::Unit(i));
-  }
+  for (int i = 0; i < 3; ++i)
+    for (const Eigen::Vector3d& axis : {Eigen::Vector3d(Eigen::Vector3d::Unit(i)), Eigen::Vector3d(a.X_WM.linear().col(i)),
+                                        Eigen::Vector3d(b.X_WM.linear().col(i))}) {
+      directions.push_back(axis);
+      directions.push_back(-axis);
+    }
   for (const Eigen::Vector3d& u : directions) {
     const double escape = std::max(0.0, -supportGapLowerBound(a, b, u));  // B moved this far is beyond A
     if (escape < seed.knownEscape) {
@@ -495,7 +511,7 @@ void addPlaneEscapes(const PosedModel& a, const PosedModel& b, OverlapSeed& seed
 
 OverlapSeed seedOverlap(const PosedModel& a, const PosedModel& b, const QueryContext& ctx) {
   OverlapSeed seed;
-  double deepest = std::numeric_limits<double>::infinity();
+  double deepest = std::numeric_limits<double>::infinity(), proved = 0;
   for (bool ofA : {true, false}) {
     const PosedModel& surface = ofA ? a : b;
     const PosedModel& field = ofA ? b : a;
@@ -506,11 +522,12 @@ OverlapSeed seedOverlap(const PosedModel& a, const PosedModel& b, const QueryCon
     if (m.value < deepest) {
       deepest = m.value;
       const SurfacePoint onField = field.closestWorld(m.point);
+      proved = std::max(0.0, -onField.signedDistance - onField.error);  // realised, less the query's error
       seed.deepPoint = m.point;
       seed.direction = ofA ? Eigen::Vector3d(-onField.normal) : onField.normal;  // the way B leaves
     }
   }
-  seed.provedDepth = std::max(0.0, -deepest);
+  seed.provedDepth = proved;
   addPlaneEscapes(a, b, seed);
   return seed;
 }

@@ -72,7 +72,7 @@ OverlapSeed seedFromContact(const PosedModel& a, const PosedModel& b, const Eige
 std::optional<DistanceResult> shallowDepth(const PosedModel& a, const PosedModel& b, const QueryContext& ctx,
                                            const Eigen::Vector3d& contact_W);
 
-/// Lowers seed.knownEscape by supporting-plane escapes along the axes and seed.direction.
+/// Lowers seed.knownEscape by supporting-plane escapes along the world's and both models' axes and seed.direction.
 void addPlaneEscapes(const PosedModel& a, const PosedModel& b, OverlapSeed& seed);
 
 }  // namespace unidist::detail
