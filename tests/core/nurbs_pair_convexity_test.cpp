@@ -184,4 +184,31 @@ TEST(PairNewton, ConvergesNextToAContact) {
   }
 }
 
+// The collinear-normal polish must not take an end it did not converge to: a ball under a torus's tube, where the
+// tube's bottom circle is a parabolic line, left its equations degenerate; the wandering end it took (closer than
+// the descent's, but off the minimum) misled the search's certificates, and the pair 1e-7 apart ran out the pair
+// budget and the generic routine (3.7 s, bounded; before the polish and since, ~1 ms certified). A random pose.
+TEST(PairNewton, AnUnconvergedCollinearEndIsNotTaken) {
+  const NurbsModel torus({nurbs_fixtures::torusSurface(1, 0.25)}, true);
+  const NurbsModel ball({nurbs_fixtures::sphereSurface(0.4)}, true);
+  Eigen::Isometry3d XA = Eigen::Isometry3d::Identity();
+  XA.linear() = Eigen::Quaterniond(0.3, -0.8, 0.45, 0.25).normalized().toRotationMatrix();
+  XA.translation() = Eigen::Vector3d(0.22, -0.71, -0.35);
+  const double around = 4.8552056840566964, across = 4.6861422461664546;
+  const Eigen::Vector3d radial(std::cos(around), std::sin(around), 0);
+  const Eigen::Vector3d out = std::cos(across) * radial + std::sin(across) * Eigen::Vector3d::UnitZ();
+  for (double gap : {1e-5, 1e-7, 1e-9}) {
+    SCOPED_TRACE(::testing::Message() << "gap " << gap);
+    Eigen::Isometry3d XB = XA;
+    XB.translation() = XA * (radial + (0.65 + gap) * out);
+    DistanceOptions opt;
+    opt.tolerance = 6.25e-11;
+    const DistanceResult r = distance(torus, XA, ball, XB, opt);
+    EXPECT_EQ(r.status, Status::Certified) << r.method;
+    EXPECT_LE(r.lowerBound, gap + 1e-15);
+    EXPECT_GE(r.upperBound, gap - 1e-15);
+    EXPECT_GT(r.lowerBound, 0);
+  }
+}
+
 }  // namespace unidist

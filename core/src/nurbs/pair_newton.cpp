@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace unidist::nurbs {
 namespace {
@@ -13,6 +14,7 @@ constexpr int kSteps = 40;
 constexpr int kDampings = 12;
 constexpr int kCollinearSteps = 20;
 constexpr int kCollinearHalvings = 6;
+constexpr double kCollinearAngle = 1e-8;  // a collinear-Newton end is taken only where its pair is this collinear
 
 struct Eval {
   SurfaceDerivatives a, b;  // b already in A's frame
@@ -75,32 +77,52 @@ Eigen::Vector4d collinearEquations(const Eval& e, Eigen::Matrix4d& J) {
   return {d.dot(a.du), d.dot(a.dv), N.dot(b.du), N.dot(b.dv)};
 }
 
+/// Whether e's pair is collinear to within `angle` (radians): the normals parallel and the segment along them.
+bool collinear(const Eval& e, double angle) {
+  const Eigen::Vector3d nA = e.a.du.cross(e.a.dv), nB = e.b.du.cross(e.b.dv);
+  if (!(nA.norm() > 0) || !(nB.norm() > 0)) return false;
+  const Eigen::Vector3d uA = nA.normalized(), d = e.b.point - e.a.point;
+  if (!(uA.cross(nB.normalized()).norm() <= angle)) return false;
+  // The segment's sideways part, to within the points' rounding (at a gap of 1e-9 its direction is only good to
+  // ~1e-7).
+  const double rounding = 1024 * std::numeric_limits<double>::epsilon() * (e.a.point.norm() + e.b.point.norm());
+  return uA.cross(d).norm() <= angle * d.norm() + rounding;
+}
+
 /// Newton on collinearEquations from e (in place), each step kept only where it lowers the distance (halved
-/// otherwise): the end of a descent that ran out of steps next to a contact.
+/// otherwise): the end of a descent that ran out of steps next to a contact. Taken only where it ends inside the
+/// patches on a collinear pair, nearer than the descent's end; otherwise x and e are left as they were (where the
+/// equations are degenerate, a ball under a ring's parabolic line, its steps wander along the contact, and an end
+/// that is neither the descent's nor a solution misleads the search's certificates).
 void collinearPolish(const RationalBezierPatch& pa, const RationalBezierPatch& pb, const Eigen::Isometry3d& X_AB,
                      Eigen::Vector4d& x, Eval& e, int& evaluations) {
+  Eigen::Vector4d y = x;
+  Eval ey = e;
   for (int step = 0; step < kCollinearSteps; ++step) {
     Eigen::Matrix4d J;
-    const Eigen::Vector4d F = collinearEquations(e, J);
+    const Eigen::Vector4d F = collinearEquations(ey, J);
     const Eigen::FullPivLU<Eigen::Matrix4d> lu(J);
-    if (!lu.isInvertible()) return;
+    if (!lu.isInvertible()) break;
     Eigen::Vector4d delta = -lu.solve(F);
-    if (!delta.allFinite()) return;
-    bool accepted = false;
+    if (!delta.allFinite()) break;
+    bool accepted = false, converged = false;
     for (int halving = 0; halving < kCollinearHalvings && !accepted; ++halving, delta *= 0.5) {
-      const Eigen::Vector4d trial = (x + delta).cwiseMax(0.0).cwiseMin(1.0);
-      if (trial == x) return;
+      const Eigen::Vector4d trial = y + delta;
+      if (!((trial.array() > 0).all() && (trial.array() < 1).all())) continue;  // inside the patches only
       const Eval et = evaluate(pa, pb, X_AB, trial);
       ++evaluations;
-      if (et.value < e.value) {
+      if (et.value < ey.value) {
         accepted = true;
-        const double moved = (trial - x).cwiseAbs().maxCoeff();
-        x = trial;
-        e = et;
-        if (moved < 1e-14) return;
+        converged = (trial - y).cwiseAbs().maxCoeff() < 1e-14;
+        y = trial;
+        ey = et;
       }
     }
-    if (!accepted) return;
+    if (!accepted || converged) break;
+  }
+  if (ey.value < e.value && collinear(ey, kCollinearAngle)) {
+    x = y;
+    e = ey;
   }
 }
 
