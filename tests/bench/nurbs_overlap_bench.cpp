@@ -67,7 +67,8 @@ int main(int argc, char** argv) {
   const Eigen::Isometry3d I = Eigen::Isometry3d::Identity();
   std::mt19937 rng(3);
   std::uniform_real_distribution<double> angle(0, 2 * M_PI);
-  std::printf("# tolerance %g, %d placements per band; csv,overlap,pair,depth,median_ms,max_ms,certified,count,worst_error\n",
+  std::printf("# tolerance %g, %d placements per band; "
+              "csv,overlap,pair,depth,median_ms,max_ms,certified,count,worst_error\n",
               tolerance, count);
   (void)unidist::distance(torus, I, ball, Eigen::Isometry3d(Eigen::Translation3d(2, 0, 0)), options);  // trees built
   for (double depth : {1e-6, 1e-3, 0.05, 0.3}) {

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# Regenerates docs/results/nurbs_vs_occt.{txt,csv}, nurbs_overlap.txt, nurbs_convex_depth.txt and nurbs_tolerance.png: unidist's NURBS queries beside
-# OpenCASCADE 7.6 (tests/bench/nurbs_vs_occt.cpp), our time and error against the tolerance, and the point
-# query medians beside OpenCASCADE's (nurbs_points.png).
+# Regenerates docs/results/nurbs_vs_occt.{txt,csv}, nurbs_overlap.txt, nurbs_convex_depth.txt and
+# nurbs_tolerance.png: unidist's NURBS queries beside OpenCASCADE 7.6 (tests/bench/nurbs_vs_occt.cpp), our time and
+# error against the tolerance, the point query medians beside OpenCASCADE's (nurbs_points.png), and the penetration
+# depth of non-convex and of convex NURBS solids (nurbs_overlap_bench.cpp, nurbs_convex_depth_bench.cpp).
 # usage: tests/bench/run_nurbs_benchmarks.sh [build-dir] [points-per-model]
 #        (a Release build; needs libocct-modeling-algorithms-dev and libtbb-dev, and gnuplot for the plot)
 #        PLOT_ONLY=1 tests/bench/run_nurbs_benchmarks.sh    redraws the plot from the committed CSV

@@ -472,7 +472,8 @@ OverlapSeed seedFromContact(const PosedModel& a, const PosedModel& b, const Eige
     Eigen::Vector3d p, n;
     const PosedModel& surface = deeperIsBInA ? b : a;
     const PosedModel& solid = deeperIsBInA ? a : b;
-    if (const double d = deepenOn(surface, solid, seed.deepPoint, tolerance, p, n, -1, 2 * coarse); d > seed.provedDepth) {
+    const double d = deepenOn(surface, solid, seed.deepPoint, tolerance, p, n, -1, 2 * coarse);
+    if (d > seed.provedDepth) {
       seed.provedDepth = d;
       seed.deepPoint = p;
       seed.direction = deeperIsBInA ? n : Eigen::Vector3d(-n);
@@ -495,7 +496,8 @@ void addPlaneEscapes(const PosedModel& a, const PosedModel& b, OverlapSeed& seed
   // The world's axes and both models' own (a ring's axis is the way a ring stacked on another leaves).
   std::vector<Eigen::Vector3d> directions = {seed.direction};
   for (int i = 0; i < 3; ++i)
-    for (const Eigen::Vector3d& axis : {Eigen::Vector3d(Eigen::Vector3d::Unit(i)), Eigen::Vector3d(a.X_WM.linear().col(i)),
+    for (const Eigen::Vector3d& axis : {Eigen::Vector3d(Eigen::Vector3d::Unit(i)),
+                                        Eigen::Vector3d(a.X_WM.linear().col(i)),
                                         Eigen::Vector3d(b.X_WM.linear().col(i))}) {
       directions.push_back(axis);
       directions.push_back(-axis);

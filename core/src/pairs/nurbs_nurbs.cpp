@@ -31,6 +31,10 @@ constexpr int kMaxDepth = 40;     // beyond this, rounding and not the bound lim
 // Pairs popped before the search stops with the bounds it has (a continuum of minima — a sphere centred on a
 // torus's axis — can need far more at a tight tolerance). Small enough that such a case stays in milliseconds.
 constexpr int kPairBudget = 20000;
+// The penetration search's separation tests: one that needs more is as good as failed (surfaces crossing by less
+// than the gap Newton realises there run any budget out: 3 s at the full one), and a failed test only widens the
+// bisection's bracket by a step.
+constexpr int kApartProofBudget = kPairBudget / 8;
 constexpr double kFlatAngle = 0.5;  // a node with a narrower normal cone is polished by Newton when popped
 constexpr int kSeedPairs = 3;       // root pairs Newton starts from before the search
 constexpr double kSameEnd = 1e-9;   // Newton ends this close in parameters are one (certified once)
@@ -66,9 +70,9 @@ class PairSearch {
  public:
   /// With stopWhenApart the search ends as soon as its lower bound is positive (an overlap verdict needs no more).
   PairSearch(const NurbsModel& a, const NurbsModel& b, const Eigen::Isometry3d& X_AB, double tolerance,
-             bool stopWhenApart)
+             bool stopWhenApart, int budget = kPairBudget)
       : a_(a), b_(b), X_AB_(X_AB), R_BA_(X_AB.linear().transpose()), tolerance_(tolerance),
-        stopWhenApart_(stopWhenApart) {}
+        stopWhenApart_(stopWhenApart), budget_(budget) {}
 
   Outcome run() {
     seed();
@@ -82,7 +86,7 @@ class PairSearch {
       // Surfaces within the tolerance may cross: proving them apart is not this search's job.
       if (best_.value <= 0.5 * tolerance_) return Outcome::Touching;
       if (top.lower >= best_.value - 0.5 * tolerance_ || (stopWhenApart_ && lower() > 0)) return Outcome::Proved;
-      if (popped >= kPairBudget) return Outcome::Exhausted;
+      if (popped >= budget_) return Outcome::Exhausted;
       open_.pop();
       ++popped;
       if (settledByRegion(*top.a, *top.b)) continue;
@@ -480,6 +484,7 @@ class PairSearch {
   Eigen::Matrix3d R_BA_;
   double tolerance_;
   bool stopWhenApart_;
+  int budget_;
   Best best_ = [] {
     Best b;
     b.value = std::numeric_limits<double>::infinity();
@@ -638,7 +643,8 @@ DistanceResult nurbsNurbs(const PosedModel& a, const PosedModel& b, const QueryC
   // search is spared (see insideSolid).
   if (const std::optional<Eigen::Vector3d> corner = firstCornerInside(ma, mb, X_AB))
     return ctx.overlapVerdictOnly ? overlapVerdict() : meeting(a, b, ctx, a.toWorld(*corner));
-  PairSearch search(ma, mb, X_AB, ctx.tolerance, ctx.overlapVerdictOnly);
+  PairSearch search(ma, mb, X_AB, ctx.tolerance, ctx.overlapVerdictOnly,
+                    ctx.apartProofOnly ? kApartProofBudget : kPairBudget);
   const Outcome outcome = search.run();
   // An exhausted search whose lower bound is still positive has proved the surfaces apart too.
   const bool surfacesApart = outcome != Outcome::Touching && search.lower() > 0;
