@@ -88,6 +88,38 @@ TEST(NurbsShallowDepth, BoxSunkIntoTheTubeTopGetsItsExactDepth) {
   }
 }
 
+// Random poses of the torus and random places around its tube, depths from 1e-7 to 0.35 (most of the ball's centre
+// inside the tube): every bracket holds the truth and is certified. (A bound taken from a ball whose centre lay
+// outside its solid once claimed more than the depth; the point queries' error once went uncounted.)
+TEST(NurbsShallowDepth, RandomSunkBallsHoldTheTruth) {
+  const double R = 1, a = 0.25, rho = 0.4;
+  const NurbsModel torus({nurbs_fixtures::torusSurface(R, a)}, true);
+  const NurbsModel ball({nurbs_fixtures::sphereSurface(rho)}, true);
+  const Sphere sphere(rho);
+  std::mt19937 rng(99);
+  std::uniform_real_distribution<double> angle(0, 2 * M_PI), u(-1, 1);
+  DistanceOptions opt;
+  opt.tolerance = 1e-9;
+  for (double depth : {1e-7, 1e-4, 0.01, 0.1, 0.2, 0.3, 0.35}) {
+    for (int k = 0; k < 8; ++k) {
+      const double around = angle(rng), across = angle(rng);
+      const Vec radial(std::cos(around), std::sin(around), 0);
+      const Vec out = std::cos(across) * radial + std::sin(across) * Vec::UnitZ();
+      Eigen::Isometry3d XA = randomRotation(rng);
+      XA.translation() = Vec(u(rng), u(rng), u(rng));
+      Eigen::Isometry3d XB = XA;
+      XB.translation() = XA * (radial + (a + rho - depth) * out);
+      SCOPED_TRACE(::testing::Message() << "depth " << depth << " around " << around << " across " << across);
+      for (const Model* b : {static_cast<const Model*>(&ball), static_cast<const Model*>(&sphere)}) {
+        const DistanceResult r = distance(torus, XA, *b, XB, opt);
+        EXPECT_EQ(r.status, Status::Certified) << r.method;
+        EXPECT_LE(r.lowerBound, -depth + 1e-12);
+        EXPECT_GE(r.upperBound, -depth - 1e-12);
+      }
+    }
+  }
+}
+
 // Two tori, one shifted 0.1 along the other's axis through it: the translation separating them is 0.4 (up the
 // axis, the tubes' circles 0.1 apart must get 0.5 apart) while no surface point is deeper than 0.1 in the other
 // solid. Balls inscribed in both tubes at an escape's contact (here the supporting planes' escape along the
