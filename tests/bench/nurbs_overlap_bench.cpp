@@ -75,16 +75,14 @@ int main(int argc, char** argv) {
     Band nurbsBall, primitive, boxBand;
     for (int k = 0; k < count; ++k) {
       // The ball's centre off the tube at a random place around it; the box's face over the tube's top, turned.
-      const double around = angle(rng), across = angle(rng);
-      const Vec radial(std::cos(around), std::sin(around), 0);
-      const Vec out = std::cos(across) * radial + std::sin(across) * Vec::UnitZ();
-      const Eigen::Isometry3d X_B(Eigen::Translation3d(R * radial + (a + rho - depth) * out));
+      const nurbs_truth::TubePlace place{angle(rng), angle(rng)};
+      const Eigen::Isometry3d X_B(Eigen::Translation3d(place.point(R, a + rho - depth)));
       measure(nurbsBall, -depth, [&] { return unidist::distance(torus, I, ball, X_B, options); });
       measure(primitive, -depth, [&] { return unidist::distance(torus, I, sphere, X_B, options); });
       if (depth >= 0.3) continue;  // a box sunk below the tube's top by more than its radius crosses it elsewhere
       Eigen::Isometry3d X_box = Eigen::Isometry3d::Identity();
-      X_box.translate(R * radial + Vec(0, 0, a + half - depth));
-      X_box.rotate(Eigen::AngleAxisd(around, Vec::UnitZ()));
+      X_box.translate(R * place.radial() + Vec(0, 0, a + half - depth));
+      X_box.rotate(Eigen::AngleAxisd(place.around, Vec::UnitZ()));
       measure(boxBand, -depth, [&] { return unidist::distance(torus, I, box, X_box, options); });
     }
     report("torus-NURBS ball", depth, nurbsBall);

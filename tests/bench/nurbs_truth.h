@@ -30,6 +30,16 @@ inline double pointCircle(const Vec& p, const Circle& c) {
   return std::hypot(h, rho - c.radius);
 }
 
+/// A place around the tube of a torus about z whose core circle (radius R) is centred at the origin: `around` the
+/// axis, `across` the tube from the outward radial (0 outside, π/2 above, π in the hole). point(R, h) is h from the
+/// core circle (h < R), along out().
+struct TubePlace {
+  double around, across;
+  Vec radial() const { return {std::cos(around), std::sin(around), 0}; }
+  Vec out() const { return std::cos(across) * radial() + std::sin(across) * Vec::UnitZ(); }
+  Vec point(double R, double h) const { return R * radial() + h * out(); }
+};
+
 inline Vec onCircle(const Circle& c, double angle) {
   const Vec e1 = c.axis.unitOrthogonal(), e2 = c.axis.cross(e1);
   return c.centre + c.radius * (std::cos(angle) * e1 + std::sin(angle) * e2);

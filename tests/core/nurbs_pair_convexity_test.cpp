@@ -170,11 +170,11 @@ TEST(PairNewton, ConvergesNextToAContact) {
   for (double gap : {1e-7, 7.6e-10, 1e-11}) {
     for (int k = 0; k < 6; ++k) {
       // The ball's centre off the tube, its surface `gap` from the torus's (centre a + ρ + gap from the core).
-      const double around = k == 0 ? 4.9457 : angle(rng), across = k == 0 ? 4.4835 : angle(rng);
-      const Eigen::Vector3d radial(std::cos(around), std::sin(around), 0);
-      const Eigen::Vector3d out = std::cos(across) * radial + std::sin(across) * Eigen::Vector3d::UnitZ();
-      const Eigen::Isometry3d X_AB(Eigen::Translation3d(radial + (0.65 + gap) * out));
-      SCOPED_TRACE(::testing::Message() << "gap " << gap << " around " << around << " across " << across);
+      const nurbs_truth::TubePlace place = k == 0 ? nurbs_truth::TubePlace{4.9457, 4.4835}
+                                                  : nurbs_truth::TubePlace{angle(rng), angle(rng)};
+      const Eigen::Isometry3d X_AB(Eigen::Translation3d(place.point(1, 0.65 + gap)));
+      SCOPED_TRACE(::testing::Message() << "gap " << gap << " around " << place.around << " across "
+                                        << place.across);
       double least = std::numeric_limits<double>::infinity();
       for (const RationalBezierPatch& pa : torus.patches())
         for (const RationalBezierPatch& pb : ball.patches())
@@ -194,13 +194,11 @@ TEST(PairNewton, AnUnconvergedCollinearEndIsNotTaken) {
   Eigen::Isometry3d XA = Eigen::Isometry3d::Identity();
   XA.linear() = Eigen::Quaterniond(0.3, -0.8, 0.45, 0.25).normalized().toRotationMatrix();
   XA.translation() = Eigen::Vector3d(0.22, -0.71, -0.35);
-  const double around = 4.8552056840566964, across = 4.6861422461664546;
-  const Eigen::Vector3d radial(std::cos(around), std::sin(around), 0);
-  const Eigen::Vector3d out = std::cos(across) * radial + std::sin(across) * Eigen::Vector3d::UnitZ();
+  const nurbs_truth::TubePlace place{4.8552056840566964, 4.6861422461664546};
   for (double gap : {1e-5, 1e-7, 1e-9}) {
     SCOPED_TRACE(::testing::Message() << "gap " << gap);
     Eigen::Isometry3d XB = XA;
-    XB.translation() = XA * (radial + (0.65 + gap) * out);
+    XB.translation() = XA * place.point(1, 0.65 + gap);
     DistanceOptions opt;
     opt.tolerance = 6.25e-11;
     const DistanceResult r = distance(torus, XA, ball, XB, opt);

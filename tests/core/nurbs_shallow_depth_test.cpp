@@ -52,18 +52,17 @@ TEST(NurbsShallowDepth, BallsSunkIntoTheTorusTubeGetTheirExactDepth) {
     opt.tolerance = 1e-9 * scale;
     for (double depth : {1e-6, 1e-3, 0.05, 0.3}) {
       // The ball's centre off the tube at a random place around it (outside, above, inside the hole).
-      const double around = angle(rng), across = angle(rng);
-      const Vec radial(std::cos(around), std::sin(around), 0);
-      const Vec out = std::cos(across) * radial + std::sin(across) * Vec::UnitZ();
-      const Vec c = R * radial + (a + rho - depth) * out;
+      const nurbs_truth::TubePlace place{angle(rng), angle(rng)};
+      const Vec c = place.point(R, a + rho - depth);
       ASSERT_NEAR(nurbs_truth::pointCircle(c, core), a + rho - depth, 1e-12);
       const Eigen::Isometry3d XA = randomRotation(rng);
       Eigen::Isometry3d XB = XA;
       XB.translation() = XA * (scale * c);
-      SCOPED_TRACE(::testing::Message() << "scale " << scale << " depth " << depth << " around " << around
-                                        << " across " << across);
-      expectDepth(distance(torus, XA, ball, XB, opt), depth * scale, XA.linear() * out, opt.tolerance);
-      expectDepth(distance(torus, XA, sphere, XB, opt), depth * scale, XA.linear() * out, opt.tolerance);
+      SCOPED_TRACE(::testing::Message() << "scale " << scale << " depth " << depth << " around " << place.around
+                                        << " across " << place.across);
+      const Vec away = XA.linear() * place.out();
+      expectDepth(distance(torus, XA, ball, XB, opt), depth * scale, away, opt.tolerance);
+      expectDepth(distance(torus, XA, sphere, XB, opt), depth * scale, away, opt.tolerance);
     }
   }
 }
@@ -102,14 +101,13 @@ TEST(NurbsShallowDepth, RandomSunkBallsHoldTheTruth) {
   opt.tolerance = 1e-9;
   for (double depth : {1e-7, 1e-4, 0.01, 0.1, 0.2, 0.3, 0.35}) {
     for (int k = 0; k < 8; ++k) {
-      const double around = angle(rng), across = angle(rng);
-      const Vec radial(std::cos(around), std::sin(around), 0);
-      const Vec out = std::cos(across) * radial + std::sin(across) * Vec::UnitZ();
+      const nurbs_truth::TubePlace place{angle(rng), angle(rng)};
       Eigen::Isometry3d XA = randomRotation(rng);
       XA.translation() = Vec(u(rng), u(rng), u(rng));
       Eigen::Isometry3d XB = XA;
-      XB.translation() = XA * (radial + (a + rho - depth) * out);
-      SCOPED_TRACE(::testing::Message() << "depth " << depth << " around " << around << " across " << across);
+      XB.translation() = XA * place.point(R, a + rho - depth);
+      SCOPED_TRACE(::testing::Message() << "depth " << depth << " around " << place.around << " across "
+                                        << place.across);
       for (const Model* b : {static_cast<const Model*>(&ball), static_cast<const Model*>(&sphere)}) {
         const DistanceResult r = distance(torus, XA, *b, XB, opt);
         EXPECT_EQ(r.status, Status::Certified) << r.method;

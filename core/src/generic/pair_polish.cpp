@@ -68,12 +68,13 @@ struct Projector {
   }
 };
 
-}  // namespace
-
+/// Both NURBS solids: their answers come polished from their own routine, and polishSeparation leaves them.
 bool nurbsSolids(const PosedModel& a, const PosedModel& b) {
   return a.model.type() == ModelType::Nurbs && a.model.isSolid() && b.model.type() == ModelType::Nurbs &&
          b.model.isSolid();
 }
+
+}  // namespace
 
 void polishAcrossPatches(const PosedModel& a, const PosedModel& b, DistanceResult& r, double tolerance) {
   if (!(r.lowerBound > 0) || !(r.distance > 0)) return;

@@ -9,9 +9,6 @@
 
 namespace unidist::detail {
 
-/// Both NURBS solids: their answers come polished from their own routine, and polishSeparation leaves them.
-bool nurbsSolids(const PosedModel& a, const PosedModel& b);
-
 /// Improves a separated answer (r.lowerBound > 0) in place: points, distance, normal, upper bound. The bounds stay
 /// proved (every pair it keeps is a pair of realised surface points); the status is settled against `tolerance`.
 void polishSeparation(const PosedModel& a, const PosedModel& b, DistanceResult& r, double tolerance);

@@ -166,11 +166,7 @@ class DepthSearch {
     if (!(best.length - provedInside > kSlidingSuspicion * best.length + ctx_.tolerance)) return best;
     std::vector<Eigen::Vector3d> lifts;
     for (const Escape& p : planes_) lifts.push_back(p.contactNormal);
-    for (int i = 0; i < 3; ++i)
-      for (double sign : {1.0, -1.0}) {
-        lifts.push_back(sign * a_.X_WM.linear().col(i));
-        lifts.push_back(sign * b_.X_WM.linear().col(i));
-      }
+    for (const Eigen::Vector3d& axis : axesOfBoth(a_, b_)) lifts.push_back(axis);
     for (const Eigen::Vector3d& u : lifts) {
       if (std::abs(u.dot(e)) > 0.99) continue;  // along the ray: no lift off a face the ray slides on
       const Escape lifted = exitAlong(e, provedInside, 0.25 * ctx_.tolerance * u, kLiftedSearchSteps);
@@ -413,22 +409,35 @@ double deepenOn(const PosedModel& surface, const PosedModel& solid, const Eigen:
   return std::max(0.0, -in.signedDistance - in.error);
 }
 
+/// deepenOn for `surface` (B's when bInA, else A's) in the other solid, its point kept in the seed when deeper:
+/// B's surface inside A leaves along A's outward normal; A's surface inside B makes B leave against B's.
+double deepenInto(const PosedModel& a, const PosedModel& b, bool bInA, const Eigen::Vector3d& start, double tolerance,
+                  OverlapSeed& seed, double stop = -1, double firstStep = -1) {
+  Eigen::Vector3d p, n;
+  const double d = deepenOn(bInA ? b : a, bInA ? a : b, start, tolerance, p, n, stop, firstStep);
+  if (d > seed.provedDepth) {
+    seed.provedDepth = d;
+    seed.deepPoint = p;
+    seed.direction = bInA ? n : Eigen::Vector3d(-n);
+  }
+  return d;
+}
+
+/// Lowers seed.knownEscape by the supporting-plane escape along unit u: B moved this far along u is beyond A.
+void addPlaneEscape(const PosedModel& a, const PosedModel& b, const Eigen::Vector3d& u, OverlapSeed& seed) {
+  const double escape = std::max(0.0, -supportGapLowerBound(a, b, u));
+  if (escape < seed.knownEscape) {
+    seed.knownEscape = escape;
+    seed.knownEscapeDirection = u;
+  }
+}
+
 }  // namespace
 
 void deepenSeed(const PosedModel& a, const PosedModel& b, double tolerance, OverlapSeed& seed) {
   const Eigen::Vector3d start = seed.deepPoint;
-  Eigen::Vector3d p, n;
-  // B's surface inside A leaves along A's outward normal; A's surface inside B makes B leave against B's.
-  if (const double d = deepenOn(b, a, start, tolerance, p, n); d > seed.provedDepth) {
-    seed.provedDepth = d;
-    seed.deepPoint = p;
-    seed.direction = n;
-  }
-  if (const double d = deepenOn(a, b, start, tolerance, p, n); d > seed.provedDepth) {
-    seed.provedDepth = d;
-    seed.deepPoint = p;
-    seed.direction = -n;
-  }
+  deepenInto(a, b, true, start, tolerance, seed);
+  deepenInto(a, b, false, start, tolerance, seed);
 }
 
 OverlapSeed seedFromContact(const PosedModel& a, const PosedModel& b, const Eigen::Vector3d& contact_W,
@@ -441,22 +450,15 @@ OverlapSeed seedFromContact(const PosedModel& a, const PosedModel& b, const Eige
   const double coarse = std::max(1e-3 * tolerance, kCoarseDeepening * size);
   bool deeperIsBInA = true;
   addPlaneEscapes(a, b, seed);
-  // B's surface inside A leaves along A's outward normal; A's surface inside B makes B leave against B's. A side
-  // as deep as a supporting plane's escape already meets the upper bound: the other is not tried.
+  // A side as deep as a supporting plane's escape already meets the upper bound: the other is not tried.
   for (const bool bInA : {true, false}) {
     if (seed.provedDepth >= seed.knownEscape - 0.25 * tolerance) break;
-    const PosedModel& surface = bInA ? b : a;
     const PosedModel& solid = bInA ? a : b;
     const Eigen::Vector3d inward = -solid.closestWorld(contact_W).normal;
     const auto deepenFrom = [&](const Eigen::Vector3d& start) {
-      Eigen::Vector3d p, n;
-      const double d = deepenOn(surface, solid, start, tolerance, p, n, coarse);
-      if (d > seed.provedDepth) {
-        seed.provedDepth = d;
-        seed.deepPoint = p;
-        seed.direction = bInA ? n : Eigen::Vector3d(-n);
-        deeperIsBInA = bInA;
-      }
+      const double before = seed.provedDepth;
+      const double d = deepenInto(a, b, bInA, start, tolerance, seed, coarse);
+      if (seed.provedDepth > before) deeperIsBInA = bInA;
       return d > 0;
     };
     // Where the surfaces cross at a small angle the surface point nearest a start just inside the solid can lie
@@ -468,18 +470,8 @@ OverlapSeed seedFromContact(const PosedModel& a, const PosedModel& b, const Eige
       found = deepenFrom(contact_W + nudge * inward);
     if (!found) deepenFrom(solid.toWorld(solid.model.localBoundingSphere().center));
   }
-  if (seed.provedDepth > 0) {
-    Eigen::Vector3d p, n;
-    const PosedModel& surface = deeperIsBInA ? b : a;
-    const PosedModel& solid = deeperIsBInA ? a : b;
-    const double d = deepenOn(surface, solid, seed.deepPoint, tolerance, p, n, -1, 2 * coarse);
-    if (d > seed.provedDepth) {
-      seed.provedDepth = d;
-      seed.deepPoint = p;
-      seed.direction = deeperIsBInA ? n : Eigen::Vector3d(-n);
-    }
-  }
-  addPlaneEscapes(a, b, seed);  // along the deepest point's normal too
+  if (seed.provedDepth > 0) deepenInto(a, b, deeperIsBInA, seed.deepPoint, tolerance, seed, -1, 2 * coarse);
+  addPlaneEscape(a, b, seed.direction, seed);  // the deepest point's normal: the axes were tried above
   return seed;
 }
 
@@ -494,21 +486,10 @@ std::optional<DistanceResult> shallowDepth(const PosedModel& a, const PosedModel
 
 void addPlaneEscapes(const PosedModel& a, const PosedModel& b, OverlapSeed& seed) {
   // The world's axes and both models' own (a ring's axis is the way a ring stacked on another leaves).
-  std::vector<Eigen::Vector3d> directions = {seed.direction};
+  addPlaneEscape(a, b, seed.direction, seed);
   for (int i = 0; i < 3; ++i)
-    for (const Eigen::Vector3d& axis : {Eigen::Vector3d(Eigen::Vector3d::Unit(i)),
-                                        Eigen::Vector3d(a.X_WM.linear().col(i)),
-                                        Eigen::Vector3d(b.X_WM.linear().col(i))}) {
-      directions.push_back(axis);
-      directions.push_back(-axis);
-    }
-  for (const Eigen::Vector3d& u : directions) {
-    const double escape = std::max(0.0, -supportGapLowerBound(a, b, u));  // B moved this far is beyond A
-    if (escape < seed.knownEscape) {
-      seed.knownEscape = escape;
-      seed.knownEscapeDirection = u;
-    }
-  }
+    for (double sign : {1.0, -1.0}) addPlaneEscape(a, b, sign * Eigen::Vector3d::Unit(i), seed);
+  for (const Eigen::Vector3d& axis : axesOfBoth(a, b)) addPlaneEscape(a, b, axis, seed);
 }
 
 OverlapSeed seedOverlap(const PosedModel& a, const PosedModel& b, const QueryContext& ctx) {

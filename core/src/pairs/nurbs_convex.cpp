@@ -157,12 +157,11 @@ DistanceResult nurbsConvex(const PosedModel& a, const PosedModel& b, const Query
     }
     // A point of one inside the other was found (a surface point of A inside B, or the containment test's point):
     // the escape at the deepest point near it settles a shallow overlap.
-    if (meet || contained)
-      if (std::optional<DistanceResult> r = shallowDepth(a, b, ctx, a.toWorld(meet ? s.pA : *inside))) {
-        r->iterations += s.iterations;
-        capAtContact(*r, ctx.tolerance);
-        return *r;
-      }
+    if (std::optional<DistanceResult> r = shallowDepth(a, b, ctx, a.toWorld(meet ? s.pA : *inside))) {
+      r->iterations += s.iterations;
+      capAtContact(*r, ctx.tolerance);
+      return *r;
+    }
     OverlapSeed seed = seedOverlap(a, b, ctx);
     deepenSeed(a, b, ctx.tolerance, seed);
     DistanceResult r = translationalDepth(a, b, ctx, seed);

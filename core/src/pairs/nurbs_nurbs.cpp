@@ -599,11 +599,7 @@ std::optional<DistanceResult> settleTouching(const PosedModel& a, const PosedMod
   }
   std::vector<Eigen::Vector3d> directions = {outward, b.toWorld(mb.localBoundingSphere().center) -
                                                           a.toWorld(ma.localBoundingSphere().center)};
-  for (int k = 0; k < 3; ++k)
-    for (double sign : {1.0, -1.0}) {
-      directions.push_back(sign * a.X_WM.linear().col(k));
-      directions.push_back(sign * b.X_WM.linear().col(k));
-    }
+  for (const Eigen::Vector3d& axis : axesOfBoth(a, b)) directions.push_back(axis);
   const double step = 0.5 * ctx.tolerance;
   for (Eigen::Vector3d m : directions) {
     if (!(m.norm() > 0)) continue;

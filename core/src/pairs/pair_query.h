@@ -4,6 +4,7 @@
 #include "unidist/distance.h"
 
 #include <algorithm>
+#include <vector>
 
 namespace unidist::detail {
 
@@ -26,6 +27,19 @@ struct PosedModel {
   }
   Eigen::Vector3d supportWorld(const Eigen::Vector3d& d_W) const { return toWorld(model.support(dirToLocal(d_W))); }
 };
+
+/// Both models' axes in the world, each both ways (12 directions): the ways a solid resting on or stacked with
+/// another most often leaves it (a ring lifted along its axis), tried by the escape and touching searches.
+inline std::vector<Eigen::Vector3d> axesOfBoth(const PosedModel& a, const PosedModel& b) {
+  std::vector<Eigen::Vector3d> axes;
+  axes.reserve(12);
+  for (int k = 0; k < 3; ++k)
+    for (double sign : {1.0, -1.0}) {
+      axes.emplace_back(sign * a.X_WM.linear().col(k));
+      axes.emplace_back(sign * b.X_WM.linear().col(k));
+    }
+  return axes;
+}
 
 struct QueryContext {
   double tolerance;   ///< absolute, > 0 after defaulting (0 from the user becomes a rounding-level value)
