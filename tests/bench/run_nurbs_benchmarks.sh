@@ -23,6 +23,7 @@ if [ "${PLOT_ONLY:-0}" != 1 ]; then
   # Non-convex NURBS penetration depth by depth band (no peer answers it).
   cmake --build "$BUILD" --target unidist_bench_nurbs_overlap -j2
   "$BUILD/tests/bench/unidist_bench_nurbs_overlap" 20 | tee "$OUT/nurbs_overlap.txt"
+  "$BUILD/tests/bench/unidist_bench_nurbs_overlap" 60 1e-9 sweep | tee -a "$OUT/nurbs_overlap.txt"
   # Convex NURBS penetration depth beside FCL's ellipsoids (built where FCL is found).
   if cmake --build "$BUILD" --target unidist_bench_nurbs_convex_depth -j2 >/dev/null 2>&1; then
     "$BUILD/tests/bench/unidist_bench_nurbs_convex_depth" 40 | tee "$OUT/nurbs_convex_depth.txt"
