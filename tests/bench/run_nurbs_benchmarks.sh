@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
-# Regenerates docs/results/nurbs_vs_occt.{txt,csv}, nurbs_overlap.txt, nurbs_convex_depth.txt and
-# nurbs_tolerance.png: unidist's NURBS queries beside OpenCASCADE 7.6 (tests/bench/nurbs_vs_occt.cpp), our time and
-# error against the tolerance, the point query medians beside OpenCASCADE's (nurbs_points.png), and the penetration
-# depth of non-convex and of convex NURBS solids (nurbs_overlap_bench.cpp, nurbs_convex_depth_bench.cpp).
+# Regenerates docs/results/nurbs_vs_occt.{txt,csv}, nurbs_overlap.txt, nurbs_pairs_random.txt,
+# nurbs_convex_depth.txt and nurbs_tolerance.png: unidist's NURBS queries beside OpenCASCADE 7.6
+# (tests/bench/nurbs_vs_occt.cpp), our time and error against the tolerance, the point query medians beside
+# OpenCASCADE's (nurbs_points.png), surface pairs in random poses (nurbs_pair_profile.cpp random), and the
+# penetration depth of non-convex and of convex NURBS solids (nurbs_overlap_bench.cpp, nurbs_convex_depth_bench.cpp).
 # usage: tests/bench/run_nurbs_benchmarks.sh [build-dir] [points-per-model]
 #        (a Release build; needs libocct-modeling-algorithms-dev and libtbb-dev, and gnuplot for the plot)
 #        PLOT_ONLY=1 tests/bench/run_nurbs_benchmarks.sh    redraws the plot from the committed CSV
@@ -24,6 +25,9 @@ if [ "${PLOT_ONLY:-0}" != 1 ]; then
   cmake --build "$BUILD" --target unidist_bench_nurbs_overlap -j2
   "$BUILD/tests/bench/unidist_bench_nurbs_overlap" 20 | tee "$OUT/nurbs_overlap.txt"
   "$BUILD/tests/bench/unidist_bench_nurbs_overlap" 60 1e-9 sweep | tee -a "$OUT/nurbs_overlap.txt"
+  # Surface pairs in random separated poses (ours alone): what a speed-up of the fixed placements must not lose.
+  cmake --build "$BUILD" --target unidist_bench_nurbs_pair_profile -j2
+  "$BUILD/tests/bench/unidist_bench_nurbs_pair_profile" random 200 | tee "$OUT/nurbs_pairs_random.txt"
   # Convex NURBS penetration depth beside FCL's ellipsoids (built where FCL is found).
   if cmake --build "$BUILD" --target unidist_bench_nurbs_convex_depth -j2 >/dev/null 2>&1; then
     "$BUILD/tests/bench/unidist_bench_nurbs_convex_depth" 40 | tee "$OUT/nurbs_convex_depth.txt"

@@ -382,13 +382,16 @@ constexpr double kCoarseDeepening = 1e-5;  // seedFromContact's first descents s
 constexpr double kContactNudgeReach = 1.0;  // seedFromContact's starts reach as far in as the larger model's radius
 
 /// One surface's deepest point inside the other solid, from the surface point nearest `start`.
-/// Returns the depth reached (0 when `start` is not near a point of `surface` inside `solid`).
+/// Returns the depth reached, proved (0 when `start` is not near a point of `surface` inside `solid`); `realised`
+/// receives it as the point query realised it, before its error bound.
 /// `stop`: the step at which the descent ends (default 1e-3 × tolerance); `firstStep`: its first step (default the
 /// start's depth, at least the tolerance).
 double deepenOn(const PosedModel& surface, const PosedModel& solid, const Eigen::Vector3d& start, double tolerance,
-                Eigen::Vector3d& deepest, Eigen::Vector3d& outward, double stop = -1, double firstStep = -1) {
+                Eigen::Vector3d& deepest, Eigen::Vector3d& outward, double& realised, double stop = -1,
+                double firstStep = -1) {
   Eigen::Vector3d p = surface.closestWorld(start).point;
   SurfacePoint in = solid.closestWorld(p);
+  realised = 0;
   if (!(in.signedDistance < 0)) return 0;
   if (!(stop > 0)) stop = 1e-3 * tolerance;
   double step = firstStep > 0 ? firstStep : std::max({-in.signedDistance, tolerance, 2 * stop});
@@ -405,6 +408,7 @@ double deepenOn(const PosedModel& surface, const PosedModel& solid, const Eigen:
   }
   deepest = p;
   outward = in.normal;
+  realised = -in.signedDistance;
   // Proved: the point query's distance is realised, the true one at most its error less.
   return std::max(0.0, -in.signedDistance - in.error);
 }
@@ -413,10 +417,12 @@ double deepenOn(const PosedModel& surface, const PosedModel& solid, const Eigen:
 /// B's surface inside A leaves along A's outward normal; A's surface inside B makes B leave against B's.
 double deepenInto(const PosedModel& a, const PosedModel& b, bool bInA, const Eigen::Vector3d& start, double tolerance,
                   OverlapSeed& seed, double stop = -1, double firstStep = -1) {
-  Eigen::Vector3d p, n;
-  const double d = deepenOn(bInA ? b : a, bInA ? a : b, start, tolerance, p, n, stop, firstStep);
+  Eigen::Vector3d p = Eigen::Vector3d::Zero(), n = Eigen::Vector3d::Zero();
+  double realised = 0;
+  const double d = deepenOn(bInA ? b : a, bInA ? a : b, start, tolerance, p, n, realised, stop, firstStep);
   if (d > seed.provedDepth) {
     seed.provedDepth = d;
+    seed.realisedDepth = realised;
     seed.deepPoint = p;
     seed.direction = bInA ? n : Eigen::Vector3d(-n);
   }
@@ -480,7 +486,11 @@ std::optional<DistanceResult> shallowDepth(const PosedModel& a, const PosedModel
   const OverlapSeed seed = seedFromContact(a, b, contact_W, ctx.tolerance);
   if (!(seed.provedDepth > 0)) return std::nullopt;
   DistanceResult r = translationalDepth(a, b, ctx, seed, DepthScope::SeedEscape);
-  if (r.status != Status::Certified) return std::nullopt;
+  // Not certified, but the deepest point's realised depth meets the proved escape: the bracket is as narrow as
+  // the point queries can prove (a sliver 1e-8 deep along a circle, stacked rings), and the full search, made of
+  // the same queries, would spend its budget for a wider one. The answer goes out bounded.
+  const bool realisedMeetsEscape = r.upperBound < 0 && -r.lowerBound - seed.realisedDepth <= ctx.tolerance;
+  if (r.status != Status::Certified && !realisedMeetsEscape) return std::nullopt;
   return r;
 }
 

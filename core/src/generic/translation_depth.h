@@ -27,6 +27,9 @@ namespace unidist::detail {
 /// What the caller already knows about the overlap.
 struct OverlapSeed {
   double provedDepth = 0;  ///< a proved lower bound on the depth (e.g. the deepest surface point's depth), >= 0
+  /// The depth of the point behind provedDepth as its point query realised it (provedDepth is that less the
+  /// query's error bound, which near a surface grows as the squared distance's rounding over the distance).
+  double realisedDepth = 0;
   Eigen::Vector3d deepPoint = Eigen::Vector3d::Zero();  ///< a world point inside both solids, or near both
   Eigen::Vector3d direction = Eigen::Vector3d::UnitZ();  ///< a promising escape direction for B (unit)
   double knownEscape = std::numeric_limits<double>::infinity();  ///< a proved escape distance (upper bound)

@@ -3,8 +3,11 @@
 #include "unidist/nurbs.h"
 
 #include <algorithm>
+#include <array>
+#include <cstddef>
 #include <cmath>
 #include <limits>
+#include <memory_resource>
 #include <queue>
 #include <utility>
 #include <vector>
@@ -42,8 +45,8 @@ void halve(const double* c, int p, int q, int direction, double* left, double* r
 
 /// How much the coefficient ratios r (u-major) curve along u and along v: the largest second difference times
 /// the degree squared, the bound's slack from that direction.
-std::pair<double, double> curvature(const std::vector<double>& r, int p, int q) {
-  const auto at = [&](int i, int j) { return r[static_cast<std::size_t>(i * (q + 1) + j)]; };
+std::pair<double, double> curvature(const double* r, int p, int q) {
+  const auto at = [&](int i, int j) { return r[i * (q + 1) + j]; };
   double alongU = 0, alongV = 0;
   for (int i = 0; i <= p; ++i)
     for (int j = 0; j <= q; ++j) {
@@ -53,10 +56,9 @@ std::pair<double, double> curvature(const std::vector<double>& r, int p, int q) 
   return {alongU * p * p, alongV * q * q};
 }
 
-std::vector<double> ratiosOf(const double* a, const double* w, int terms) {
-  std::vector<double> r(static_cast<std::size_t>(terms));
-  for (int k = 0; k < terms; ++k) r[static_cast<std::size_t>(k)] = a[k] / w[k];
-  return r;
+/// The coefficient ratios a / w into r.
+void ratiosOf(const double* a, const double* w, int terms, double* r) {
+  for (int k = 0; k < terms; ++k) r[k] = a[k] / w[k];
 }
 
 }  // namespace
@@ -69,18 +71,24 @@ RatioBound subdividedRatioBound(int p, int q, const double* a, const double* w, 
     maxW = std::max(maxW, w[k]);
     minW = std::min(minW, w[k]);
   }
+  // The pieces' forms, the heap and the scratch rows on the stack while they fit (the heap beyond): a certificate
+  // is asked of several nodes per query and usually ends within a dozen splits.
+  std::array<std::byte, 16384> stack;
+  std::pmr::monotonic_buffer_resource memory(stack.data(), stack.size());
+  std::pmr::vector<double> ratios(static_cast<std::size_t>(terms), &memory);
+  ratiosOf(a, w, terms, ratios.data());
   // Not worth splitting when a corner of the square is above `enough` already (g there is its coefficient ratio),
   // or when the ratios curve both ways about as much: halving across one direction at a time then does what the
   // patch tree's quadrants do, at least as many pieces for the same bound.
-  const std::vector<double> rootRatios = ratiosOf(a, w, terms);
   double cornerHigh = -std::numeric_limits<double>::infinity();
-  for (int k : {0, q, terms - 1 - q, terms - 1}) cornerHigh = std::max(cornerHigh, rootRatios[static_cast<std::size_t>(k)]);
-  const auto [alongU, alongV] = curvature(rootRatios, p, q);
+  for (int k : {0, q, terms - 1 - q, terms - 1}) cornerHigh = std::max(cornerHigh, ratios[static_cast<std::size_t>(k)]);
+  const auto [alongU, alongV] = curvature(ratios.data(), p, q);
   if (cornerHigh > refine.enough || std::min(alongU, alongV) > kAnisotropic * std::max(alongU, alongV))
-    return {*std::max_element(rootRatios.begin(), rootRatios.end()) + refine.allowance, cornerHigh, 0};
+    return {*std::max_element(ratios.begin(), ratios.end()) + refine.allowance, cornerHigh, 0};
   const int budget = std::max(0, refine.budget);
-  // Grown as pieces are made: most calls stop after a split or two (a corner already above `enough`).
-  std::vector<double> pool(a, a + terms);
+  std::pmr::vector<double> pool(&memory);
+  pool.reserve(static_cast<std::size_t>(2 * terms * 24));
+  pool.insert(pool.end(), a, a + terms);
   pool.insert(pool.end(), w, w + terms);
   int slots = 1;
   double reached = -std::numeric_limits<double>::infinity();
@@ -95,10 +103,10 @@ RatioBound subdividedRatioBound(int p, int q, const double* a, const double* w, 
     const double halving = 2 * depth * (p + q) * kEps * (maxA + std::abs(upper) * maxW) / minW;
     return Piece{upper + refine.allowance + halving, slot, depth};
   };
-  std::priority_queue<Piece> open;
+  std::priority_queue<Piece, std::pmr::vector<Piece>> open{std::less<Piece>(), std::pmr::vector<Piece>(&memory)};
   open.push(bound(0, 0));
   int splits = 0;
-  std::vector<double> left;
+  std::pmr::vector<double> left(static_cast<std::size_t>(2 * terms), &memory);
   while (true) {
     const Piece top = open.top();
     // Done when enough, when a corner already shows the bound cannot get there, or when the pieces are exact
@@ -108,11 +116,11 @@ RatioBound subdividedRatioBound(int p, int q, const double* a, const double* w, 
       return {top.upper, reached, splits};
     open.pop();
     ++splits;
-    left.resize(static_cast<std::size_t>(2 * terms));
     pool.resize(static_cast<std::size_t>(2 * terms * (slots + 1)));
     double* pa = pool.data() + static_cast<std::size_t>(2 * terms * top.slot);
     double* pw = pa + terms;
-    const auto [curvedU, curvedV] = curvature(ratiosOf(pa, pw, terms), p, q);
+    ratiosOf(pa, pw, terms, ratios.data());
+    const auto [curvedU, curvedV] = curvature(ratios.data(), p, q);
     const int direction = curvedU > curvedV ? 0 : 1;
     double* ra = pool.data() + static_cast<std::size_t>(2 * terms * slots);
     double* rw = ra + terms;

@@ -54,8 +54,8 @@ struct OpenPair {
   bool operator>(const OpenPair& o) const { return lower > o.lower; }
 };
 
-/// Where a search ended.
-enum class Outcome { Proved, Touching, Exhausted };
+/// Where a search ended. Crossing: a Newton end's point lies inside the other solid (the solids overlap).
+enum class Outcome { Proved, Touching, Crossing, Exhausted };
 
 // Thomas et al.'s bound-and-subdivide for the distance of two surfaces: best-first over pairs of patch-tree
 // nodes. A pair is dropped when (a) its proved lower bound — balls, then GJK between the two subpatches'
@@ -82,6 +82,7 @@ class PairSearch {
     seedFromLowestPairs();
     int popped = 0;
     while (!open_.empty()) {
+      if (inside_) return Outcome::Crossing;
       const OpenPair top = open_.top();
       // Surfaces within the tolerance may cross: proving them apart is not this search's job.
       if (best_.value <= 0.5 * tolerance_) return Outcome::Touching;
@@ -120,10 +121,13 @@ class PairSearch {
       for (const Node* c : (splitA ? a_.forest() : b_.forest()).children(*n, arena_))
         splitA ? visit(c, top.b, top.wB - top.wA) : visit(top.a, c, top.wB - top.wA);
     }
+    if (inside_) return Outcome::Crossing;
     return best_.value <= 0.5 * tolerance_ ? Outcome::Touching : Outcome::Proved;
   }
 
   double best() const { return best_.value; }
+  /// After Outcome::Crossing: the point (A's frame) proved inside the other solid.
+  const std::optional<Eigen::Vector3d>& pointInside() const { return inside_; }
   double lower() const {
     const double open = open_.empty() ? std::numeric_limits<double>::infinity() : open_.top().lower;
     return std::min({open, lowerOfClosed_, lowerOfPruned_, best_.value});
@@ -359,7 +363,20 @@ class PairSearch {
       static_cast<nurbs::PairHit&>(best_) = h;
       best_.patchA = patchA;
       best_.patchB = patchB;
+      noteCrossing(patchA);
     }
+  }
+
+  /// Solids crossing by a sliver (stacked rings sunk 1e-8 into each other along a circle) leave Newton stationary
+  /// pairs short of zero, and every pair along the sliver unsettled: the search would run its whole budget.
+  /// A best pair whose B point lies behind A's tangent plane there is tested: a point proved inside the other
+  /// solid ends the search as crossing.
+  void noteCrossing(int patchA) {
+    if (inside_ || !a_.isSolid() || !b_.isSolid() || !(best_.value > 0.5 * tolerance_)) return;
+    const Eigen::Vector3d outward = a_.patchNormal(patchA, best_.x[0], best_.x[1]);
+    if (!(outward.dot(best_.pB - best_.pA) < 0)) return;
+    if (insideSolid(a_, best_.pB)) inside_ = best_.pB;
+    else if (insideSolid(b_, X_AB_.inverse() * best_.pA)) inside_ = best_.pA;
   }
 
   void polishFrom(const Node& na, const Node& nb) {
@@ -493,6 +510,7 @@ class PairSearch {
   double lowerOfClosed_ = std::numeric_limits<double>::infinity();  // pairs at the depth cap
   double lowerOfPruned_ = std::numeric_limits<double>::infinity();  // pairs dropped by their bound
   int iterations_ = 0;
+  std::optional<Eigen::Vector3d> inside_;  // a best pair's point proved inside the other solid
   std::vector<NewtonEnd> ends_;
   std::vector<ConvexRegion> regions_;
   SupportPlane plane_;
@@ -567,7 +585,8 @@ bool overlapWitnessed(const PosedModel& a, const PosedModel& b, const QueryConte
 bool provedApart(const NurbsModel& ma, const NurbsModel& mb, const Eigen::Isometry3d& X_AB, double tolerance) {
   if (firstCornerInside(ma, mb, X_AB)) return false;
   PairSearch search(ma, mb, X_AB, tolerance, true);
-  return search.run() != Outcome::Touching && search.lower() > 0;
+  const Outcome outcome = search.run();
+  return outcome != Outcome::Touching && outcome != Outcome::Crossing && search.lower() > 0;
 }
 
 /// Surfaces touching (within half the tolerance: the search's realised gap), certified by the first of:
@@ -642,6 +661,11 @@ DistanceResult nurbsNurbs(const PosedModel& a, const PosedModel& b, const QueryC
   PairSearch search(ma, mb, X_AB, ctx.tolerance, ctx.overlapVerdictOnly,
                     ctx.apartProofOnly ? kApartProofBudget : kPairBudget);
   const Outcome outcome = search.run();
+  if (outcome == Outcome::Crossing) {
+    if (ctx.overlapVerdictOnly) return overlapVerdict();
+    if (ctx.apartProofOnly) return notProvedApart(search.best());
+    return meeting(a, b, ctx, a.toWorld(*search.pointInside()));
+  }
   // An exhausted search whose lower bound is still positive has proved the surfaces apart too.
   const bool surfacesApart = outcome != Outcome::Touching && search.lower() > 0;
   if (ctx.overlapVerdictOnly && outcome == Outcome::Touching)
