@@ -183,5 +183,31 @@ TEST(NurbsShallowDepth, StackedRingsSunkBySliverAnswerFromTheEscape) {
   }
 }
 
+// A ball (radius 0.8, NURBS) resting in the ring's hole, centred on its axis and sunk by g: it touches the ring
+// all round and leaves only up the axis, rising until its centre is a + ρ from the core circle: about 3.3 g, deeper
+// than any surface point is in the other solid (g). The ball's contacts all round bound the depth together
+// (ball_union.h): certified, where the full search left [−3.28 g, −g] after up to 0.9 s.
+TEST(NurbsShallowDepth, BallSunkInTheRingsHoleLeavesUpTheAxis) {
+  std::mt19937 rng(29);
+  const double R = 1, a = 0.25, rho = 0.8;
+  for (double scale : {1e-4, 1.0, 1e4}) {
+    const NurbsModel torus({nurbs_fixtures::torusSurface(R * scale, a * scale)}, true);
+    const NurbsModel ball({nurbs_fixtures::sphereSurface(rho * scale)}, true);
+    const DistanceOptions opt = atScale(scale);
+    for (double g : {1e-8, 1e-6, 1e-4, 1e-2}) {
+      const double height = std::sqrt((a + rho - g) * (a + rho - g) - R * R);
+      const double depth = scale * (std::sqrt((a + rho) * (a + rho) - R * R) - height);
+      const Eigen::Isometry3d XA = randomRotation(rng);
+      Eigen::Isometry3d XB = XA;
+      XB.translation() = XA * Vec(0, 0, scale * height);
+      SCOPED_TRACE(::testing::Message() << "scale " << scale << " sunk " << g);
+      const DistanceResult r = distance(torus, XA, ball, XB, opt);
+      expectHolds(r, depth, opt.tolerance);
+      EXPECT_EQ(r.status, Status::Certified) << r.method;
+      EXPECT_GT(r.normal.dot(XA.linear() * Vec::UnitZ()), 1 - 1e-6) << "up the axis";
+    }
+  }
+}
+
 }  // namespace
 }  // namespace unidist

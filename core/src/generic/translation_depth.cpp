@@ -1,6 +1,7 @@
 #include "generic/translation_depth.h"
 
 #include "dispatch.h"
+#include "generic/ball_union.h"
 #include "generic/direction_cones.h"
 #include "generic/surface_search.h"
 #include "pairs/analytic.h"
@@ -310,6 +311,15 @@ DistanceResult translationalDepth(const PosedModel& a, const PosedModel& b, cons
   // A supporting plane's escape that already meets the proved depth needs no search for contact points (a shallow
   // overlap's bisection along a face B slides on, lifted off it in every direction: a third of a second).
   if (best.length - provedDepth > tol) consider(search.polishedExit(seed.direction, seed.deepPoint));
+  // Both models' axes leaning the seed's way: a ball sunk in a ring's hole leaves up the ring's axis, the one way
+  // out that no single contact's normal shows.
+  for (const Eigen::Vector3d& axis : axesOfBoth(a, b))
+    if (best.length - provedDepth > tol && axis.dot(seed.direction) > 0 && search.mayBeat(axis, best.length))
+      consider(search.polishedExit(axis, seed.deepPoint));
+  // All the contacts of a round solid at once, where it starts and where the best escape leaves it (a ball sunk
+  // in a ring's hole leaves only up the axis, deeper than any point is in).
+  if (std::isfinite(best.length) && best.length - provedDepth > tol)
+    provedDepth = std::max(provedDepth, ballUnionBound(a, b, best.length * best.direction));
   // In a deep overlap the deepest point's normal can point the long way out (B's point nearest A's middle
   // leaves through A's far side); the line between the models' centres is the other natural first guess.
   const Eigen::Vector3d centres = b.toWorld(b.model.localBoundingSphere().center) -
