@@ -16,6 +16,7 @@
 
 #include <limits>
 #include <random>
+#include <utility>
 
 namespace unidist {
 namespace {
@@ -183,28 +184,33 @@ TEST(NurbsShallowDepth, StackedRingsSunkBySliverAnswerFromTheEscape) {
   }
 }
 
-// A ball (radius 0.8, NURBS) resting in the ring's hole, centred on its axis and sunk by g: it touches the ring
-// all round and leaves only up the axis, rising until its centre is a + ρ from the core circle: about 3.3 g, deeper
-// than any surface point is in the other solid (g). The ball's contacts all round bound the depth together
-// (ball_union.h): certified, where the full search left [−3.28 g, −g] after up to 0.9 s.
+// A ball (radius 0.8, NURBS) resting in the ring's hole, sunk by g, its centre on the axis or δ off it: it
+// touches the ring all round and leaves only to where its centre is a + ρ from the core circle all round, the
+// top of the spindle the circle's (a + ρ)-neighbourhood makes over the axis: a distance √(δ² + Δz²), Δz about
+// 3.3 g, deeper than any surface point is in the other solid (g). The ball's contacts all round bound the depth
+// together and lead to the escape (ball_union.h): certified, where the full search left [−3.28 g, −g] (on the
+// axis) after up to 0.9 s.
 TEST(NurbsShallowDepth, BallSunkInTheRingsHoleLeavesUpTheAxis) {
   std::mt19937 rng(29);
   const double R = 1, a = 0.25, rho = 0.8;
+  const double top = std::sqrt((a + rho) * (a + rho) - R * R);  // the spindle's top over the axis
   for (double scale : {1e-4, 1.0, 1e4}) {
     const NurbsModel torus({nurbs_fixtures::torusSurface(R * scale, a * scale)}, true);
     const NurbsModel ball({nurbs_fixtures::sphereSurface(rho * scale)}, true);
     const DistanceOptions opt = atScale(scale);
-    for (double g : {1e-8, 1e-6, 1e-4, 1e-2}) {
+    for (const auto& [g, off] : {std::pair{1e-8, 0.0}, {1e-6, 0.0}, {1e-4, 0.0}, {1e-2, 0.0}, {1e-4, 1e-9},
+                                 {1e-4, 1e-6}, {1e-4, 1e-4}}) {
       const double height = std::sqrt((a + rho - g) * (a + rho - g) - R * R);
-      const double depth = scale * (std::sqrt((a + rho) * (a + rho) - R * R) - height);
+      const double depth = scale * std::hypot(off, top - height);
       const Eigen::Isometry3d XA = randomRotation(rng);
       Eigen::Isometry3d XB = XA;
-      XB.translation() = XA * Vec(0, 0, scale * height);
-      SCOPED_TRACE(::testing::Message() << "scale " << scale << " sunk " << g);
+      XB.translation() = XA * Vec(scale * off, 0, scale * height);
+      SCOPED_TRACE(::testing::Message() << "scale " << scale << " sunk " << g << " off the axis " << off);
       const DistanceResult r = distance(torus, XA, ball, XB, opt);
       expectHolds(r, depth, opt.tolerance);
       EXPECT_EQ(r.status, Status::Certified) << r.method;
-      EXPECT_GT(r.normal.dot(XA.linear() * Vec::UnitZ()), 1 - 1e-6) << "up the axis";
+      const Vec way = XA.linear() * Vec(-off, 0, top - height).normalized();
+      EXPECT_GT(r.normal.dot(way), 1 - 1e-6) << "to the spindle's top";
     }
   }
 }

@@ -16,15 +16,24 @@
 namespace unidist::detail {
 
 /// The least |t| with |t − v_i| >= radius for every i: the distance from the origin to the outside of the union
-/// of the balls (v_i, radius) that hold the origin (the others are ignored), less its rounding; 0 for none.
+/// of the balls (v_i, radius), less its rounding; 0 where none holds the origin.
 /// Exact (to rounding) from the nearest points of the spheres, of their pairwise circles and their triple points
-/// that no other ball covers; at least the deepest ball's own radius − |v_i|.
-double outsideBallUnion(const std::vector<Eigen::Vector3d>& centres, double radius);
+/// that no other ball covers; at least the deepest ball's own radius − |v_i|. `nearest` (when given) receives
+/// the point of the outside found nearest the origin (zero when none was), and `away` a unit direction leaving
+/// every sphere through it (their outward normals' mean; zero when there is none).
+double outsideBallUnion(const std::vector<Eigen::Vector3d>& centres, double radius,
+                        Eigen::Vector3d* nearest = nullptr, Eigen::Vector3d* away = nullptr);
 
 /// The bound above for B moving against A, with the ball about each solid's bounding-sphere centre that its
 /// point query proves inside it, and the other model's surface points inside that ball nearest its centre and
 /// nearest where `escape` (a translation of B that separates them, or zero) takes it (NURBS: per patch, from a
-/// grid of starts; other models give none yet). 0 where no ball holds a surface point of the other.
-double ballUnionBound(const PosedModel& a, const PosedModel& b, const Eigen::Vector3d& escape);
+/// grid of starts; other models give none yet). 0 where no ball holds a surface point of the other. Its end
+/// point, the way out the contacts leave, is where the escape search looks next.
+struct BallUnionBound {
+  double depth = 0;                                ///< proved: the depth is at least this
+  Eigen::Vector3d way = Eigen::Vector3d::Zero();   ///< the translation of B the bound ends at: the contacts let go
+  Eigen::Vector3d away = Eigen::Vector3d::Zero();  ///< a unit direction off every contact there (zero: none)
+};
+BallUnionBound ballUnionBound(const PosedModel& a, const PosedModel& b, const Eigen::Vector3d& escape);
 
 }  // namespace unidist::detail

@@ -26,6 +26,7 @@ constexpr double kSlidingSuspicion = 0.05;
 constexpr int kLiftedSearchSteps = 10;
 constexpr int kSeedEvaluations = 4000;  // per surface, for seedOverlap
 constexpr double kBallsReach = 1.1;     // inscribed balls' radii sum to this much of the escape they bound
+constexpr int kBallUnionRounds = 3;  // ball-union bounds, each from the escape the last one's end led to
 
 PosedModel movedBy(const PosedModel& b, const Eigen::Vector3d& t) {
   return {b.model, Eigen::Isometry3d(Eigen::Translation3d(t)) * b.X_WM};
@@ -90,6 +91,16 @@ class DepthSearch {
     out = dispatchPair(a_, movedBy(b_, t), verdict_);
     ++separationTests_;
     return out.lowerBound >= 0;
+  }
+
+  /// B moved by t as an escape when it is proved apart there (no contact recorded), else none.
+  Escape escapeAt(const Eigen::Vector3d& t) {
+    Escape e;
+    DistanceResult probe;
+    if (!(t.norm() > 0) || !separatedAt(t, probe)) return e;
+    e.length = t.norm();
+    e.direction = t / e.length;
+    return e;
   }
 
   /// A filter for escape tries along e: B moved along e just short of `length` must be proved apart. (A ray
@@ -318,8 +329,26 @@ DistanceResult translationalDepth(const PosedModel& a, const PosedModel& b, cons
       consider(search.polishedExit(axis, seed.deepPoint));
   // All the contacts of a round solid at once, where it starts and where the best escape leaves it (a ball sunk
   // in a ring's hole leaves only up the axis, deeper than any point is in).
-  if (std::isfinite(best.length) && best.length - provedDepth > tol)
-    provedDepth = std::max(provedDepth, ballUnionBound(a, b, best.length * best.direction));
+  // Its end, where the contacts let go, is the next way out tried: there the moved solid touches them all, so
+  // it is lifted off them by a little more each time until it is proved apart (off the ring's axis the
+  // shortest escape leans, and past that point the ray re-enters the overlap, so no exit along it is found).
+  // The next bound takes its points where that escape leaves.
+  Eigen::Vector3d target = best.length * best.direction;
+  for (int round = 0; round < kBallUnionRounds && std::isfinite(best.length) && best.length - provedDepth > tol;
+       ++round) {
+    const BallUnionBound u = ballUnionBound(a, b, target);
+    provedDepth = std::max(provedDepth, u.depth);
+    if (!(best.length - provedDepth > tol) || !(u.away.norm() > 0)) break;
+    const double before = best.length;
+    for (double lift = 0.25 * tol; lift < best.length - u.way.norm(); lift *= 4) {
+      const Escape e = search.escapeAt(u.way + lift * u.away);
+      if (!std::isfinite(e.length)) continue;
+      consider(e);
+      break;
+    }
+    if (!(best.length < before)) break;
+    target = u.way;
+  }
   // In a deep overlap the deepest point's normal can point the long way out (B's point nearest A's middle
   // leaves through A's far side); the line between the models' centres is the other natural first guess.
   const Eigen::Vector3d centres = b.toWorld(b.model.localBoundingSphere().center) -
