@@ -1,7 +1,8 @@
-// The torus primitive's exact NURBS form (Torus::asNurbs) and the route that makes a solid NURBS model meet a
-// torus through the NURBS–NURBS search on it: the form lies on the analytic torus, and every distance has a
-// closed form (a torus is the points within r of its core circle, so two tubes apart are their circles'
-// distance less both radii; a sphere is dist(centre, circle) − r − its radius from a torus).
+// The torus primitive's exact NURBS form (Torus::asNurbs; the sphere's too, Sphere::asNurbs) and the route that
+// makes a solid NURBS model meet a torus through the NURBS–NURBS search on it: the form lies on the analytic
+// torus, and every distance has a closed form (a torus is the points within r of its core circle, so two tubes
+// apart are their circles' distance less both radii; a sphere is dist(centre, circle) − r − its radius from a
+// torus).
 #include "bench/nurbs_truth.h"
 #include "nurbs_fixtures.h"
 #include "nurbs_pair_helpers.h"
@@ -23,27 +24,41 @@ using namespace nurbs_fixtures;
 using namespace nurbs_pair_helpers;
 using Vec = Eigen::Vector3d;
 
+/// The primitive's exact NURBS form, built once on first use, lies on it to rounding with outward normals (but
+/// where the chart degenerates: a sphere's poles).
+template <class Primitive>
+void expectExactForm(const Primitive& primitive, double scale) {
+  EXPECT_FALSE(primitive.structures().at(0).built);
+  const NurbsModel& form = primitive.asNurbs();
+  EXPECT_TRUE(primitive.structures().at(0).built);
+  EXPECT_EQ(&form, &primitive.asNurbs());  // built once
+  ASSERT_TRUE(form.isSolid());
+  const NurbsSurface& s = form.surfaces().at(0);
+  for (int i = 0; i <= 40; ++i)
+    for (int j = 0; j <= 40; ++j) {
+      const double u = i / 40.0, v = j / 40.0;
+      const SurfaceDerivatives d = s.derivatives(u, v);
+      const SurfacePoint p = primitive.closestPoint(d.point);
+      ASSERT_LE(std::abs(p.signedDistance), 1e-15 * scale) << u << " " << v;
+      const Vec n = form.orientation() * d.du.cross(d.dv);
+      if (n.norm() > 1e-9 * scale * scale) {
+        ASSERT_GT(n.normalized().dot(p.normal), 1 - 1e-12) << u << " " << v;
+      }
+    }
+}
+
 TEST(TorusAsNurbs, LiesOnTheTorusWithOutwardNormalsAtEveryScale) {
   for (double scale : {1e-4, 1.0, 1e4}) {
     SCOPED_TRACE(scale);
-    const Torus torus(0.8 * scale, 0.3 * scale);
-    EXPECT_FALSE(torus.structures().at(0).built);
-    const NurbsModel& form = torus.asNurbs();
-    EXPECT_TRUE(torus.structures().at(0).built);
-    EXPECT_EQ(&form, &torus.asNurbs());  // built once
-    ASSERT_TRUE(form.isSolid());
-    const NurbsSurface& s = form.surfaces().at(0);
-    for (int i = 0; i <= 40; ++i)
-      for (int j = 0; j <= 40; ++j) {
-        const double u = i / 40.0, v = j / 40.0;
-        const SurfaceDerivatives d = s.derivatives(u, v);
-        const SurfacePoint p = torus.closestPoint(d.point);
-        ASSERT_LE(std::abs(p.signedDistance), 1e-15 * scale) << u << " " << v;
-        const Vec n = form.orientation() * d.du.cross(d.dv);
-        if (n.norm() > 1e-9 * scale * scale) {
-          ASSERT_GT(n.normalized().dot(p.normal), 1 - 1e-12) << u << " " << v;
-        }
-      }
+    expectExactForm(Torus(0.8 * scale, 0.3 * scale), scale);
+  }
+}
+
+// The sphere's form (Sphere::asNurbs), which a ball sunk into a non-convex NURBS solid meets it through.
+TEST(SphereAsNurbs, LiesOnTheSphereWithOutwardNormalsAtEveryScale) {
+  for (double scale : {1e-4, 1.0, 1e4}) {
+    SCOPED_TRACE(scale);
+    expectExactForm(Sphere(0.7 * scale), scale);
   }
 }
 

@@ -70,9 +70,18 @@ class Sphere final : public Primitive {
   std::vector<SurfaceCell> surfaceCells() const override;
   void splitCell(const SurfaceCell& cell, std::vector<SurfaceCell>& out) const override;
   std::string describe() const override;
+  std::size_t memoryBytes() const override;
+
+  /// The same solid as an exact rational NURBS model (the meridian's rational quadratic half circle revolved
+  /// about z: 8 biquadratic patches, on the sphere to rounding), built on first use, once, thread-safely: a ball
+  /// sunk into a non-convex solid NURBS model meets it through the NURBS–NURBS search on it.
+  const NurbsModel& asNurbs() const;
+  /// "exact-nurbs" (asNurbs() and the patch tree its queries have refined).
+  std::vector<StructureReport> structures() const override;
 
  private:
   double r_;
+  LazyStandIn<NurbsModel> nurbs_;
 };
 
 /// Solid box [-hx,hx]x[-hy,hy]x[-hz,hz] (half extents).
