@@ -12,6 +12,9 @@
 
 namespace unidist::nurbs {
 
+/// Subdivisions a closing bound that may well fail is allowed (a continuum's pieces settle within ~15).
+constexpr int kQuickHalvings = 20;
+
 /// The cheap first try of provesNoMinimum: the tangent cones. Su never orthogonal to the objective's direction
 /// rules out interior critical points and those on the edges t = const, likewise Sv (Su and Sv vanish only on
 /// collapsed edges, whose points are a corner's).
@@ -46,6 +49,10 @@ class PointObjective final : public Objective {
   // elsewhere it is the same coefficient-ratio bound as tightLowerBound's (computed once, there).
   double closingBound(const PatchNode& n, double enough) const override {
     const DistanceExtreme e = certifyDistanceExtreme(n.net, q_, false, true, enough);
+    return e.proved ? std::max(lowerBound(n), e.value) : tightLowerBound(n);
+  }
+  double quickClosingBound(const PatchNode& n, double enough) const override {
+    const DistanceExtreme e = certifyDistanceExtreme(n.net, q_, false, true, enough, kQuickHalvings);
     return e.proved ? std::max(lowerBound(n), e.value) : tightLowerBound(n);
   }
   Cone criticalDirections(const BoundingSphere& b) const override { return coneTowards(q_, b.center, b.radius); }

@@ -165,7 +165,7 @@ SearchResult minimise(const PatchForest& forest, const std::vector<RationalBezie
   double keep = std::numeric_limits<double>::infinity();  // rank below which a point ties with the best
   // A Newton end tying with the best far from it: a continuum of minima (a ring's axis seen by a point on it),
   // along which no bound of a piece holding the tie prunes it, and pieces get split down to the premise.
-  bool tiesSeen = false;
+  bool tiesSeen = false, closingFailed = false;
   auto offer = [&](const PatchHit& h) {
     hits.push_back(h);
     if (!tiesSeen && std::abs(h.value - out.best.value) <= tolerance &&
@@ -252,11 +252,14 @@ SearchResult minimise(const PatchForest& forest, const std::vector<RationalBezie
       continue;
     // Along a continuum of ties a piece away from the best is settled at once by its closing bound (for the
     // distance: its forms subdivided across the continuum only), instead of being split level by level and
-    // closed piece by piece: a point on a ring's axis took 15M instructions.
-    if (tiesSeen && f.provesBasins() && n.depth < kTightBoundDepth &&
-        (out.best.point - n.ball.center).norm() > n.ball.radius + tieTolerance &&
-        f.closingBound(n, out.best.value - tolerance) >= out.best.value - tolerance)
-      continue;
+    // closed piece by piece: a point on a ring's axis took 15M instructions. Not after one such bound fails:
+    // then the continuum is not one it settles (a point on a torus's core circle, the tube's cross-section
+    // all round it), and each try would cost its whole subdivision.
+    if (tiesSeen && !closingFailed && f.provesBasins() && n.depth < kTightBoundDepth &&
+        (out.best.point - n.ball.center).norm() > n.ball.radius + tieTolerance) {
+      if (f.quickClosingBound(n, out.best.value - tolerance) >= out.best.value - tolerance) continue;
+      closingFailed = true;
+    }
     const bool flat = !n.normal.all && n.normal.angle <= kLeafAngle && n.ball.radius <= kLeafFraction * f.leafScale(n.ball);
     const bool tiny = n.depth >= kMaxDepth || n.ball.radius <= tolerance;
     if (flat || tiny) {

@@ -56,6 +56,8 @@ class Objective {
     (void)enough;
     return tightLowerBound(n);
   }
+  /// The same, for a try that may well fail: no dearer than a few dozen subdivisions.
+  virtual double quickClosingBound(const PatchNode& n, double enough) const { return closingBound(n, enough); }
   /// Whether curvature/basinBound or edgeBound can ever prove a piece: where not, the search takes a small flat
   /// piece a Newton run ended in to hold that one minimum, instead of splitting it for a proof that cannot come.
   virtual bool provesBasins() const { return false; }

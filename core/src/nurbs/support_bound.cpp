@@ -16,7 +16,6 @@ namespace {
 
 constexpr double kEps = std::numeric_limits<double>::epsilon();
 constexpr int kNewtonSteps = 12;
-constexpr int kSubdivisionBudget = 256;  // halvings of a distance form before its bound is taken as it stands
 
 /// Coefficients on the stack for the common degrees (up to a bicubic patch's squared distance, 7 × 7), on the
 /// heap beyond: a certificate is asked of many nodes per query.
@@ -212,7 +211,7 @@ SupportBound certifySupport(const RationalBezierPatch& patch, const Eigen::Vecto
 }
 
 DistanceExtreme certifyDistanceExtreme(const RationalBezierPatch& patch, const Eigen::Vector3d& c, bool farthest,
-                                       bool exact, double enough) {
+                                       bool exact, double enough, int halvings) {
   const int n = patch.degreeU, m = patch.degreeV;
   if (2 * std::max(n, m) > kMaxNurbsDegree) return {};  // beyond the Bernstein evaluation's fixed rows
   // ±|X − c·W|² and W² in Bernstein form of degree (2n, 2m) (bernstein_bound.h).
@@ -258,7 +257,7 @@ DistanceExtreme certifyDistanceExtreme(const RationalBezierPatch& patch, const E
   const auto subdivided = [&](double upper) {
     if (upper <= enoughSquared) return upper;
     const RatioBound r = subdividedRatioBound(h.p, h.q, h.a.begin(), h.w.begin(),
-                                              {enoughSquared, allowance, kSubdivisionBudget});
+                                              {enoughSquared, allowance, halvings});
     return std::min(upper, r.upper);
   };
   if (!exact || ratioExact) {

@@ -25,6 +25,9 @@ struct SupportBound {
 /// n need not be unit; the patch and n in one frame.
 SupportBound certifySupport(const RationalBezierPatch& patch, const Eigen::Vector3d& n);
 
+/// Halvings of a distance form before its bound is taken as it stands (certifyDistanceExtreme's default).
+constexpr int kDistanceHalvings = 256;
+
 struct DistanceExtreme {
   bool proved = false;
   double value = 0;  // when proved: |S − c| <= value (farthest) or >= value (nearest) over the whole patch
@@ -33,9 +36,11 @@ struct DistanceExtreme {
 /// The greatest (farthest = true) or least distance from c to the patch, both in one frame: exact to rounding
 /// where proved by concavity, else the bound of the Bernstein coefficients' ratios (second order in the patch
 /// size); without `exact` only the latter. With `enough` (a distance that would do: farthest at most, or nearest
-/// at least, this), a bound short of it is sharpened by subdividing the form (ratio_subdivision.h). Not proved
+/// at least, this), a bound short of it is sharpened by subdividing the form (ratio_subdivision.h), at most
+/// `halvings` times. Not proved
 /// only for non-finite input or non-positive weights.
 DistanceExtreme certifyDistanceExtreme(const RationalBezierPatch& patch, const Eigen::Vector3d& c, bool farthest,
-                                       bool exact = true, double enough = std::numeric_limits<double>::quiet_NaN());
+                                       bool exact = true, double enough = std::numeric_limits<double>::quiet_NaN(),
+                                       int halvings = kDistanceHalvings);
 
 }  // namespace unidist::nurbs
