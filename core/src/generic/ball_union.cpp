@@ -76,7 +76,8 @@ std::vector<Eigen::Vector3d> spreadDeepest(std::vector<Eigen::Vector3d> centres,
   std::sort(centres.begin(), centres.end(),
             [](const Eigen::Vector3d& x, const Eigen::Vector3d& y) { return x.squaredNorm() < y.squaredNorm(); });
   std::vector<Eigen::Vector3d> kept;
-  if (centres.empty()) return kept;
+  // No ball holds the origin: no bound (outsideBallUnion's 0), and nothing to keep.
+  if (centres.empty() || !(radius - centres.front().norm() > 0)) return kept;
   const double deepest = radius - centres.front().norm();
   std::vector<Eigen::Vector3d> candidates;
   for (const Eigen::Vector3d& c : centres) {
