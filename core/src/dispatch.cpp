@@ -71,6 +71,10 @@ DistanceResult spherePair(const PosedModel& a, const PosedModel& b, const QueryC
   bool exact = false;
   DistanceResult r = sphereAny(a, b, ctx, exact);
   if (exact || b.model.type() == ModelType::Sphere) return r;
+  // Sunk into a solid that is not convex: often the way out along the contact normal is free, which one more
+  // point query proves.
+  if (!ctx.overlapVerdictOnly)
+    if (std::optional<DistanceResult> out = sphereEscapeAlongNormal(a, b, ctx, r)) return *out;
   // Sunk into a solid NURBS model that is not convex: the ball's exact NURBS form meets it in the NURBS–NURBS
   // search, whose separation tests hold along circles of contact (a ball resting in a ring's hole took 5–40 s
   // through the point queries of the NURBS–convex route, and ~70 ms this way).

@@ -224,5 +224,29 @@ TEST(NurbsShallowDepth, BallSunkInTheRingsHoleLeavesUpTheAxis) {
   }
 }
 
+// A sphere primitive sunk into the NURBS torus's tube leaves along the contact normal: one point query at the
+// moved centre proves it out, and the bracket closes on the centre's depth (~10 µs; through the NURBS–convex
+// route 0.7–19 ms). In the ring's hole that way is blocked, and the answer comes from the exact NURBS forms.
+TEST(NurbsShallowDepth, SphereSunkIntoTheTubeLeavesAlongTheNormal) {
+  const double R = 1, a = 0.25, rho = 0.4;
+  const NurbsModel torus({nurbs_fixtures::torusSurface(R, a)}, true);
+  const Sphere sphere(rho);
+  const DistanceOptions opt = atScale(1);
+  for (double depth : {1e-9, 1e-5, 0.1, 0.3}) {
+    const nurbs_truth::TubePlace place{0.7, 1.1};
+    const Eigen::Isometry3d XB = nurbs_truth::pose(place.point(R, a + rho - depth));
+    const DistanceResult r = distance(torus, Eigen::Isometry3d::Identity(), sphere, XB, opt);
+    SCOPED_TRACE(::testing::Message() << "depth " << depth);
+    expectDepth(r, depth, place.out(), opt.tolerance);
+    EXPECT_STREQ(r.method, "sphere-escape-along-normal");
+  }
+  const Sphere big(0.8);
+  const double height = std::sqrt((a + 0.8 - 1e-4) * (a + 0.8 - 1e-4) - R * R);
+  const DistanceResult hole =
+      distance(torus, Eigen::Isometry3d::Identity(), big, nurbs_truth::pose(Vec(0, 0, height)), opt);
+  EXPECT_EQ(hole.status, Status::Certified);
+  EXPECT_STRNE(hole.method, "sphere-escape-along-normal") << "the way along the contact normal is blocked";
+}
+
 }  // namespace
 }  // namespace unidist

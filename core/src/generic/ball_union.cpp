@@ -114,7 +114,8 @@ void addPointsNear(const PosedModel& other, const Eigen::Vector3d& towards, cons
     for (int i = 0; i < kStartsPerSide; ++i)
       for (int j = 0; j < kStartsPerSide; ++j) {
         const double s = (i + 0.5) / kStartsPerSide, t = (j + 0.5) / kStartsPerSide;
-        const Eigen::Vector3d p = other.toWorld(nurbs::polish(m.patches()[k], static_cast<int>(k), distanceTo, s, t).point);
+        const nurbs::PatchHit h = nurbs::polish(m.patches()[k], static_cast<int>(k), distanceTo, s, t);
+        const Eigen::Vector3d p = other.toWorld(h.point);
         if ((p - c).norm() < radius) points.push_back(p);
       }
 }

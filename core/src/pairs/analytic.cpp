@@ -52,7 +52,8 @@ DistanceResult planeAny(const PosedModel& planeModel, const PosedModel& other, c
   return r;
 }
 
-DistanceResult sphereAny(const PosedModel& sphereModel, const PosedModel& other, const QueryContext&, bool& exact) {
+DistanceResult sphereAny(const PosedModel& sphereModel, const PosedModel& other, const QueryContext& ctx,
+                         bool& exact) {
   const double radius = static_cast<const Sphere&>(sphereModel.model).radius();
   const Eigen::Vector3d c_W = sphereModel.X_WM.translation();
   const SurfacePoint s = other.closestWorld(c_W);
@@ -66,8 +67,32 @@ DistanceResult sphereAny(const PosedModel& sphereModel, const PosedModel& other,
   r.iterations = 1;
   r.method = "sphere-point-query";
   markExact(r, c_W.norm() + radius + std::abs(s.signedDistance));
+  // The point query realises its distance; the true one may be up to its error nearer (a NURBS search's): a
+  // centre outside may be that much nearer the surface, one inside that much less deep.
+  (s.signedDistance >= 0 ? r.lowerBound : r.upperBound) += (s.signedDistance >= 0 ? -s.error : s.error);
+  settleStatus(r, ctx.tolerance);
   // For a non-convex solid, depth of the centre only bounds the penetration (another part may block the exit).
   exact = r.distance >= 0 || convexSolid(other.model);
+  return r;
+}
+
+std::optional<DistanceResult> sphereEscapeAlongNormal(const PosedModel& sphereModel, const PosedModel& other,
+                                                      const QueryContext& ctx, const DistanceResult& sunk) {
+  const double radius = static_cast<const Sphere&>(sphereModel.model).radius();
+  const Eigen::Vector3d c_W = sphereModel.X_WM.translation();
+  if (!(sunk.distance < 0) || !other.model.isSolid()) return std::nullopt;
+  // The centre's nearest surface point lies inside the ball by −distance (realised: no translation shorter
+  // keeps it out), so the depth is at least that; moved that far and a quarter tolerance more along the way the
+  // sphere leaves (−normal: the contract's normal is the way the other model leaves), and proved clear by a
+  // point query there, the sphere is out: the depth is at most that.
+  const double depth = -sunk.upperBound;
+  const double step = depth + 0.25 * ctx.tolerance;
+  const SurfacePoint moved = other.closestWorld(c_W - step * sunk.normal);
+  if (!(moved.signedDistance - moved.error >= radius)) return std::nullopt;  // blocked, or curved round the ball
+  DistanceResult r = sunk;
+  r.lowerBound = -step - roundingSlack(c_W.norm() + radius + step);
+  r.method = "sphere-escape-along-normal";
+  settleStatus(r, ctx.tolerance);
   return r;
 }
 
