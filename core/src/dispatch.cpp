@@ -75,21 +75,19 @@ DistanceResult spherePair(const PosedModel& a, const PosedModel& b, const QueryC
   // point query proves.
   if (!ctx.overlapVerdictOnly)
     if (std::optional<DistanceResult> out = sphereEscapeAlongNormal(a, b, ctx, r)) return *out;
-  // Sunk into a solid NURBS model that is not convex: the ball's exact NURBS form meets it in the NURBS–NURBS
-  // search, whose separation tests hold along circles of contact (a ball resting in a ring's hole took 5–40 s
-  // through the point queries of the NURBS–convex route, and ~70 ms this way).
-  const PosedModel exactA{static_cast<const Sphere&>(a.model).asNurbs(), a.X_WM};
-  if (b.model.type() == ModelType::Nurbs && b.model.isSolid()) return nurbsNurbs(exactA, b, ctx);
+  // The way along the contact normal is blocked (or the surface curves round the ball). Sunk into a solid NURBS
+  // model that is not convex: the ball's exact NURBS form meets it in the NURBS–NURBS search, whose separation
+  // tests hold along circles of contact (a ball resting in a ring's hole took 5–40 s through the point queries of
+  // the NURBS–convex route, and ~70 ms this way). Into a torus primitive, both exact forms likewise (its own
+  // direction search took 0.4–1.6 s there and stayed bounded, its value up to 5× the depth); where they are not
+  // certified either, the narrower answer.
+  const auto exactSphere = [&] { return PosedModel{static_cast<const Sphere&>(a.model).asNurbs(), a.X_WM}; };
+  if (b.model.type() == ModelType::Nurbs && b.model.isSolid()) return nurbsNurbs(exactSphere(), b, ctx);
   if (b.model.type() != ModelType::Torus || ctx.overlapVerdictOnly || ctx.apartProofOnly)
     return dispatchByShape(a, b, ctx);
-  // Sunk into a torus primitive where the deepest ball's way out is blocked (a ball resting in the ring's hole,
-  // whose way out no single contact shows; the torus's direction search took 0.4–1.6 s there and stayed bounded,
-  // its value up to 5× the depth): both exact NURBS forms, whose search bounds all the contacts at once.
-  r = swapped(torusSolid(b, a, ctx, false));
-  if (r.status == Status::Certified) return r;
-  const DistanceResult n = nurbsNurbs(exactA, {static_cast<const Torus&>(b.model).asNurbs(), b.X_WM}, ctx);
+  const DistanceResult n = nurbsNurbs(exactSphere(), {static_cast<const Torus&>(b.model).asNurbs(), b.X_WM}, ctx);
   if (n.status == Status::Certified) return n;
-  r = swapped(torusSolid(b, a, ctx));
+  r = dispatchByShape(a, b, ctx);
   return n.upperBound - n.lowerBound < r.upperBound - r.lowerBound ? n : r;
 }
 

@@ -30,6 +30,13 @@ Eigen::Isometry3d randomRotation(std::mt19937& rng) {
   return X;
 }
 
+/// B in A's orientation with its origin at p in A's frame.
+Eigen::Isometry3d placedIn(const Eigen::Isometry3d& XA, const Vec& p) {
+  Eigen::Isometry3d XB = XA;
+  XB.translation() = XA * p;
+  return XB;
+}
+
 /// The queries' options at a model scale: tolerance 1e-9 of it.
 DistanceOptions atScale(double scale) {
   DistanceOptions opt;
@@ -68,8 +75,7 @@ TEST(NurbsShallowDepth, BallsSunkIntoTheTorusTubeGetTheirExactDepth) {
       const Vec c = place.point(R, a + rho - depth);
       ASSERT_NEAR(nurbs_truth::pointCircle(c, core), a + rho - depth, 1e-12);
       const Eigen::Isometry3d XA = randomRotation(rng);
-      Eigen::Isometry3d XB = XA;
-      XB.translation() = XA * (scale * c);
+      const Eigen::Isometry3d XB = placedIn(XA, scale * c);
       SCOPED_TRACE(::testing::Message() << "scale " << scale << " depth " << depth << " around " << place.around
                                         << " across " << place.across);
       const Vec away = XA.linear() * place.out();
@@ -116,8 +122,7 @@ TEST(NurbsShallowDepth, RandomSunkBallsHoldTheTruth) {
       const nurbs_truth::TubePlace place{angle(rng), angle(rng)};
       Eigen::Isometry3d XA = randomRotation(rng);
       XA.translation() = Vec(u(rng), u(rng), u(rng));
-      Eigen::Isometry3d XB = XA;
-      XB.translation() = XA * place.point(R, a + rho - depth);
+      const Eigen::Isometry3d XB = placedIn(XA, place.point(R, a + rho - depth));
       SCOPED_TRACE(::testing::Message() << "depth " << depth << " around " << place.around << " across "
                                         << place.across);
       const std::pair<const Model*, const Model*> pairs[] = {{&torus, &ball}, {&torus, &sphere}, {&ring, &sphere}};
@@ -143,8 +148,7 @@ TEST(NurbsShallowDepth, InscribedBallsBoundADeepTorusOverlap) {
     const DistanceOptions opt = atScale(scale);
     for (int k = 0; k < 2; ++k) {
       const Eigen::Isometry3d XA = randomRotation(rng);
-      Eigen::Isometry3d XB = XA;
-      XB.translation() += XA.linear() * Vec(0, 0, 0.1 * scale);
+      const Eigen::Isometry3d XB = placedIn(XA, Vec(0, 0, 0.1 * scale));
       SCOPED_TRACE(::testing::Message() << "scale " << scale << " pose " << k);
       const DistanceResult r = distance(torus, XA, torus, XB, opt);
       expectHolds(r, 0.4 * scale, opt.tolerance);
@@ -170,8 +174,7 @@ TEST(NurbsShallowDepth, StackedRingsSunkBySliverAnswerFromTheEscape) {
       for (double sliver : {1e-8, 3e-8, 1e-7, 1e-6}) {
         const double depth = sliver * scale;
         const Eigen::Isometry3d XA = pose == 2 ? randomRotation(rng) : Eigen::Isometry3d::Identity();
-        Eigen::Isometry3d XB = XA;
-        XB.translation() += XA.linear() * Vec(0, 0, 0.5 * scale - depth);
+        Eigen::Isometry3d XB = placedIn(XA, Vec(0, 0, 0.5 * scale - depth));
         if (pose == 1) XB.rotate(Eigen::AngleAxisd(0.3, Vec::UnitZ()));
         SCOPED_TRACE(::testing::Message() << "scale " << scale << " sliver " << sliver << " pose " << pose);
         const DistanceResult r = distance(torus, XA, torus, XB, opt);
@@ -207,8 +210,7 @@ TEST(NurbsShallowDepth, BallSunkInTheRingsHoleLeavesUpTheAxis) {
       const double height = std::sqrt((a + rho - g) * (a + rho - g) - R * R);
       const double depth = scale * std::hypot(off, top - height);
       const Eigen::Isometry3d XA = randomRotation(rng);
-      Eigen::Isometry3d XB = XA;
-      XB.translation() = XA * Vec(scale * off, 0, scale * height);
+      const Eigen::Isometry3d XB = placedIn(XA, Vec(scale * off, 0, scale * height));
       SCOPED_TRACE(::testing::Message() << "scale " << scale << " sunk " << g << " off the axis " << off);
       const Vec way = XA.linear() * Vec(-off, 0, top - height).normalized();
       // The primitives' routes at one scale (they take the NURBS ball's route, a few times over).

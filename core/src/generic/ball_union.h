@@ -20,7 +20,8 @@ namespace unidist::detail {
 /// Exact (to rounding) from the nearest points of the spheres, of their pairwise circles and their triple points
 /// that no other ball covers; at least the deepest ball's own radius − |v_i|. `nearest` (when given) receives
 /// the point of the outside found nearest the origin (zero when none was), and `away` a unit direction leaving
-/// every sphere through it (their outward normals' mean; zero when there is none).
+/// every sphere through it (the nearest point of their outward normals' hull to the origin, normalised; zero when
+/// the hull holds the origin).
 double outsideBallUnion(const std::vector<Eigen::Vector3d>& centres, double radius,
                         Eigen::Vector3d* nearest = nullptr, Eigen::Vector3d* away = nullptr);
 

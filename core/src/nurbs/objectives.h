@@ -48,12 +48,10 @@ class PointObjective final : public Objective {
   // the piece stays outside a sphere about q that touches it, which at a pole the curvature form cannot show;
   // elsewhere it is the same coefficient-ratio bound as tightLowerBound's (computed once, there).
   double closingBound(const PatchNode& n, double enough) const override {
-    const DistanceExtreme e = certifyDistanceExtreme(n.net, q_, false, true, enough);
-    return e.proved ? std::max(lowerBound(n), e.value) : tightLowerBound(n);
+    return nearestBound(n, enough, kDistanceHalvings);
   }
   double quickClosingBound(const PatchNode& n, double enough) const override {
-    const DistanceExtreme e = certifyDistanceExtreme(n.net, q_, false, true, enough, kQuickHalvings);
-    return e.proved ? std::max(lowerBound(n), e.value) : tightLowerBound(n);
+    return nearestBound(n, enough, kQuickHalvings);
   }
   Cone criticalDirections(const BoundingSphere& b) const override { return coneTowards(q_, b.center, b.radius); }
   void derivatives(const SurfaceDerivatives& d, Eigen::Vector2d& g, Eigen::Matrix2d& H) const override {
@@ -112,6 +110,11 @@ class PointObjective final : public Objective {
   }
 
  private:
+  /// The nearest distance over the piece by certifyDistanceExtreme, its forms halved at most `halvings` times.
+  double nearestBound(const PatchNode& n, double enough, int halvings) const {
+    const DistanceExtreme e = certifyDistanceExtreme(n.net, q_, false, true, enough, halvings);
+    return e.proved ? std::max(lowerBound(n), e.value) : tightLowerBound(n);
+  }
   Eigen::Vector3d q_;
   double floor_;
   mutable BernsteinScratch scratch_;  // one objective per query and thread

@@ -69,7 +69,8 @@ DistanceResult sphereAny(const PosedModel& sphereModel, const PosedModel& other,
   markExact(r, c_W.norm() + radius + std::abs(s.signedDistance));
   // The point query realises its distance; the true one may be up to its error nearer (a NURBS search's): a
   // centre outside may be that much nearer the surface, one inside that much less deep.
-  (s.signedDistance >= 0 ? r.lowerBound : r.upperBound) += (s.signedDistance >= 0 ? -s.error : s.error);
+  if (s.signedDistance >= 0) r.lowerBound -= s.error;
+  else r.upperBound += s.error;
   settleStatus(r, ctx.tolerance);
   // For a non-convex solid, depth of the centre only bounds the penetration (another part may block the exit).
   exact = r.distance >= 0 || convexSolid(other.model);

@@ -100,8 +100,7 @@ double exitAlong(const SweptCircle& sweep, const Eigen::Vector3d& u, double star
 
 }  // namespace
 
-DistanceResult torusSolid(const PosedModel& torus, const PosedModel& other, const QueryContext& ctx,
-                          bool searchBlocked) {
+DistanceResult torusSolid(const PosedModel& torus, const PosedModel& other, const QueryContext& ctx) {
   const SweptCircle sweep(torus, other);
   const double tol = ctx.tolerance;
   const Eigen::Vector3d zero = Eigen::Vector3d::Zero();
@@ -140,7 +139,7 @@ DistanceResult torusSolid(const PosedModel& torus, const PosedModel& other, cons
     }
   };
   tryDirection(firstDirection, depthBound);
-  if (bestExit > depthBound + tol && searchBlocked) {
+  if (bestExit > depthBound + tol) {
     // The deepest ball's way out is blocked by another part of the ring: search other directions, each
     // refined by following the contact normal where it comes out (a descent on the exit distance).
     const Eigen::Vector3d axis = torus.dirToWorld(Eigen::Vector3d::UnitZ());

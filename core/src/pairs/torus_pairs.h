@@ -8,9 +8,7 @@ namespace unidist::detail {
 
 /// Torus A against any solid B. Separation: certified by branch and bound over the angle. Penetration: the
 /// deepest ball of the sweep gives a proved bound; an escape translation verified by the same search gives
-/// the other; certified when they meet (locally convex contact), bounded otherwise. Without searchBlocked, a
-/// deepest ball whose way out is blocked is left bounded at once (the caller has a better route then).
-DistanceResult torusSolid(const PosedModel& torus, const PosedModel& other, const QueryContext& ctx,
-                          bool searchBlocked = true);
+/// the other; certified when they meet (locally convex contact), bounded otherwise.
+DistanceResult torusSolid(const PosedModel& torus, const PosedModel& other, const QueryContext& ctx);
 
 }  // namespace unidist::detail

@@ -8,6 +8,7 @@
 
 #include <array>
 #include <cmath>
+#include <vector>
 
 namespace unidist {
 namespace {
@@ -21,29 +22,29 @@ std::array<CirclePoint, 9> unitCircle() {
   return {{{1, 0, 1}, {1, 1, h}, {0, 1, 1}, {-1, 1, h}, {-1, 0, 1}, {-1, -1, h}, {0, -1, 1}, {1, -1, h}, {1, 0, 1}}};
 }
 
-NurbsSurface torusSurface(double R, double r) {
-  const std::vector<double> knots = {0, 0, 0, .25, .25, .5, .5, .75, .75, 1, 1, 1};
+/// The unit circle's knots: its four quarters.
+std::vector<double> circleKnots() { return {0, 0, 0, .25, .25, .5, .5, .75, .75, 1, 1, 1}; }
+
+/// A degree-2 profile in the (rho, z) half-plane (Euclidean points and weights; knots `knotsV`) revolved about z
+/// with the unit circle: u the angle about z, v along the profile.
+NurbsSurface revolved(const std::vector<CirclePoint>& profile, std::vector<double> knotsV) {
   std::vector<std::vector<Eigen::Vector4d>> net;
-  for (const CirclePoint& about : unitCircle()) {  // u: the angle about z
+  for (const CirclePoint& about : unitCircle()) {
     net.emplace_back();
-    for (const CirclePoint& tube : unitCircle()) {  // v: the angle about the tube
-      const double rho = R + r * tube.c;
-      net.back().emplace_back(about.c * rho, about.s * rho, r * tube.s, about.w * tube.w);
-    }
+    for (const CirclePoint& p : profile) net.back().emplace_back(about.c * p.c, about.s * p.c, p.s, about.w * p.w);
   }
-  return {2, 2, knots, knots, std::move(net)};
+  return {2, 2, circleKnots(), std::move(knotsV), std::move(net)};
+}
+
+NurbsSurface torusSurface(double R, double r) {
+  std::vector<CirclePoint> tube;  // the tube circle about (R, 0)
+  for (const CirclePoint& c : unitCircle()) tube.push_back({R + r * c.c, r * c.s, c.w});
+  return revolved(tube, circleKnots());
 }
 
 NurbsSurface sphereSurface(double r) {
-  const double h = std::sqrt(0.5);
-  const std::array<CirclePoint, 5> meridian = {{{0, -1, 1}, {1, -1, h}, {1, 0, 1}, {1, 1, h}, {0, 1, 1}}};
-  std::vector<std::vector<Eigen::Vector4d>> net;
-  for (const CirclePoint& about : unitCircle()) {  // u: the angle about z
-    net.emplace_back();
-    for (const CirclePoint& along : meridian)  // v: from the south pole to the north pole
-      net.back().emplace_back(about.c * r * along.c, about.s * r * along.c, r * along.s, about.w * along.w);
-  }
-  return {2, 2, {0, 0, 0, .25, .25, .5, .5, .75, .75, 1, 1, 1}, {0, 0, 0, .5, .5, 1, 1, 1}, std::move(net)};
+  const double h = std::sqrt(0.5);  // the meridian half circle, from the south pole to the north pole
+  return revolved({{0, -r, 1}, {r, -r, h}, {r, 0, 1}, {r, r, h}, {0, r, 1}}, {0, 0, 0, .5, .5, 1, 1, 1});
 }
 
 }  // namespace
