@@ -3,8 +3,8 @@
 #include "nurbs/binomial.h"
 #include "nurbs/interval.h"
 #include "nurbs/patch_tree.h"
+#include "nurbs/small_ldlt.h"
 
-#include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 
 #include <cmath>
@@ -299,7 +299,7 @@ ConvexityCertificate certifyConvexPair(const RationalBezierPatch& a, const Ratio
   // resolution of its descent test, so z is x after up to two plain Newton steps (kept in the box).
   const double scale = centre.cwiseAbs().maxCoeff() + r.norm();
   // Each point is evaluated once: its derivatives give both its bound and the next step's gradient.
-  const Eigen::LDLT<Eigen::Matrix4d> solver(Hx);
+  const SmallLdlt<4> solver(Hx);
   double lower = tangentBound(at, lo, hi, x, scale);
   Eigen::Vector4d z = x, gz = g;
   Derivatives zA, zB;

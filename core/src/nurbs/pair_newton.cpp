@@ -1,6 +1,7 @@
 #include "nurbs/pair_newton.h"
 
-#include <Eigen/Cholesky>
+#include "nurbs/small_ldlt.h"
+
 #include <Eigen/LU>
 
 #include <algorithm>
@@ -161,8 +162,8 @@ PairHit polishPair(const RationalBezierPatch& a, const RationalBezierPatch& b, c
     for (int k = 0; k < kDampings && !accepted; ++k, mu = (mu == 0 ? 1e-6 * scale : 10 * mu)) {
       Eigen::Matrix4d Md = M;
       Md.diagonal().array() += mu;
-      const Eigen::LDLT<Eigen::Matrix4d> ldlt(Md);
-      if (ldlt.info() != Eigen::Success || !ldlt.isPositive()) continue;
+      const SmallLdlt<4> ldlt(Md);
+      if (!ldlt.positiveSemidefinite()) continue;
       Eigen::Vector4d delta = -ldlt.solve(g);
       delta = delta.cwiseProduct(free);
       if (!delta.allFinite()) continue;

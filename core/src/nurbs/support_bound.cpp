@@ -17,8 +17,8 @@ namespace {
 constexpr double kEps = std::numeric_limits<double>::epsilon();
 constexpr int kNewtonSteps = 12;
 
-/// Coefficients on the stack for the common degrees (up to a bicubic patch's squared distance, 7 × 7), on the
-/// heap beyond: a certificate is asked of many nodes per query.
+/// Coefficients on the stack for the common degrees (up to a bicubic patch's squared distance, 7 × 7, and a
+/// biquadratic one's tube quartic, 9 × 9), on the heap beyond: a certificate is asked of many nodes per query.
 class Coefficients {
  public:
   Coefficients() = default;
@@ -41,7 +41,7 @@ class Coefficients {
   const double* end() const { return data_ + size_; }
 
  private:
-  std::array<double, 49> local_;
+  std::array<double, 81> local_;  // up to a biquadratic patch's tube quartic, 9 × 9
   std::vector<double> heap_;
   double* data_ = local_.data();
   std::size_t size_ = 0;
@@ -280,6 +280,38 @@ DistanceExtreme certifyDistanceExtreme(const RationalBezierPatch& patch, const E
   // max of ±|S − c|²: the farthest distance is √upper; the nearest is √(−upper) (or 0 when the bound crosses 0).
   if (farthest) return {true, std::sqrt(std::max(0.0, upper))};
   return {true, std::sqrt(std::max(0.0, -upper))};
+}
+
+SupportBound certifyPolynomialMaximum(int p, int q, const double* coefficients, double error) {
+  if (std::max(p, q) > kMaxNurbsDegree) return {};  // beyond the Bernstein evaluation's fixed rows
+  Heights h;
+  h.p = p;
+  h.q = q;
+  const auto count = static_cast<std::size_t>((p + 1) * (q + 1));
+  h.a.assign(count, 0.0);
+  h.w.assign(count, 1.0);  // the constant 1: the ratio is the polynomial itself
+  for (std::size_t k = 0; k < count; ++k) h.a[k] = coefficients[k];
+  h.error = std::max(2 * kEps, error);
+  return certifyMaximum(h, [&](const Eigen::Vector2d& x) {
+    std::array<std::array<double, kMaxNurbsDegree + 1>, 3> bs, bt;
+    bernstein(p, x[0], bs);
+    bernstein(q, x[1], bt);
+    Height out{0, Eigen::Vector2d::Zero(), Eigen::Matrix2d::Zero()};
+    for (int i = 0; i <= p; ++i) {
+      double row[3] = {0, 0, 0};  // Σ_j B_j^(k)(t) c_ij
+      for (int j = 0; j <= q; ++j)
+        for (int k = 0; k < 3; ++k) row[k] += bt[static_cast<std::size_t>(k)][static_cast<std::size_t>(j)] * coefficients[i * (q + 1) + j];
+      const auto ui = static_cast<std::size_t>(i);
+      out.g += bs[0][ui] * row[0];
+      out.grad[0] += bs[1][ui] * row[0];
+      out.grad[1] += bs[0][ui] * row[1];
+      out.hess(0, 0) += bs[2][ui] * row[0];
+      out.hess(0, 1) += bs[1][ui] * row[1];
+      out.hess(1, 1) += bs[0][ui] * row[2];
+    }
+    out.hess(1, 0) = out.hess(0, 1);
+    return out;
+  });
 }
 
 }  // namespace unidist::nurbs

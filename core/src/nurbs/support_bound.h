@@ -25,6 +25,11 @@ struct SupportBound {
 /// n need not be unit; the patch and n in one frame.
 SupportBound certifySupport(const RationalBezierPatch& patch, const Eigen::Vector3d& n);
 
+/// The greatest value over the unit square of a polynomial in tensor-product Bernstein form (degrees p, q,
+/// coefficients u-major), proved where it is concave about its maximiser (then exact to rounding), not proved
+/// elsewhere. `error`: how far each coefficient may be off, per unit of the largest.
+SupportBound certifyPolynomialMaximum(int p, int q, const double* coefficients, double error);
+
 /// Halvings of a distance form before its bound is taken as it stands (certifyDistanceExtreme's default).
 constexpr int kDistanceHalvings = 256;
 

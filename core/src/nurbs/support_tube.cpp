@@ -1,6 +1,7 @@
 #include "nurbs/support_tube.h"
 
-#include "nurbs/bernstein_product.h"
+#include "nurbs/binomial.h"
+#include "nurbs/support_bound.h"
 
 #include <Eigen/Eigenvalues>
 
@@ -50,6 +51,36 @@ double distanceToCircle(const Eigen::Vector3d& x, const Eigen::Vector3d& centre,
   const Eigen::Vector3d r = x - centre;
   const double z = axis.dot(r);
   return std::hypot((r - z * axis).norm() - R, z);
+}
+
+/// The Bernstein product of two degree-(n, m) forms held scaled by their binomials (x̃_ij = C(n,i)·C(m,j)·x_ij),
+/// times `factor`, added to `out` (degree (2n, 2m), scaled the same way: C(2n,I)·C(2m,J) times the coefficient).
+/// N, M: n and m where they are known at compile time (the loops unrolled), else -1.
+template <int N, int M>
+void addScaledProductOf(int n, int m, const double* x, const double* y, double factor, double* out) {
+  if constexpr (N >= 0) n = N;
+  if constexpr (M >= 0) m = M;
+  const int cols = 2 * m + 1;
+  for (int i = 0; i <= n; ++i)
+    for (int j = 0; j <= m; ++j) {
+      const double xij = factor * x[i * (m + 1) + j];
+      for (int k = 0; k <= n; ++k) {
+        double* row = out + (i + k) * cols + j;
+        const double* yk = y + k * (m + 1);
+        for (int l = 0; l <= m; ++l) row[l] += xij * yk[l];
+      }
+    }
+}
+
+void addScaledProduct(int n, int m, const double* x, const double* y, double factor, double* out) {
+  // The degrees of biquadratic and bicubic patches' forms: the quartics are most of a linked pair's search.
+  switch (n == m ? n : -1) {
+    case 2: return addScaledProductOf<2, 2>(n, m, x, y, factor, out);
+    case 3: return addScaledProductOf<3, 3>(n, m, x, y, factor, out);
+    case 4: return addScaledProductOf<4, 4>(n, m, x, y, factor, out);
+    case 6: return addScaledProductOf<6, 6>(n, m, x, y, factor, out);
+    default: return addScaledProductOf<-1, -1>(n, m, x, y, factor, out);
+  }
 }
 
 }  // namespace
@@ -127,13 +158,15 @@ std::optional<SupportTube> SupportTube::fit(const SeparatorContact& contact, dou
   return tube;
 }
 
-bool SupportTube::covered(const std::vector<ProvedBox>& boxes, const PatchNode& node) {
-  return std::any_of(boxes.begin(), boxes.end(), [&](const ProvedBox& b) {
-    return b.patch == node.patch && b.s0 <= node.s0 && node.s1 <= b.s1 && b.t0 <= node.t0 && node.t1 <= b.t1;
+bool SupportTube::covered(const ProvedBoxes& boxes, const PatchNode& node) {
+  const auto patch = static_cast<std::size_t>(node.patch);
+  if (patch >= boxes.size()) return false;
+  return std::any_of(boxes[patch].begin(), boxes[patch].end(), [&](const ProvedBox& b) {
+    return b.s0 <= node.s0 && node.s1 <= b.s1 && b.t0 <= node.t0 && node.t1 <= b.t1;
   });
 }
 
-bool SupportTube::proved(NodeMemo& memo, std::vector<ProvedBox>& boxes, const PatchNode& node, const Circle& circle,
+bool SupportTube::proved(NodeMemo& memo, ProvedBoxes& boxes, const PatchNode& node, const Circle& circle,
                          double s, bool inside) {
   if (covered(boxes, node)) return true;
   const bool result = memo.get(node, [&] {
@@ -146,33 +179,46 @@ bool SupportTube::proved(NodeMemo& memo, std::vector<ProvedBox>& boxes, const Pa
     const int p = net.degreeU, q = net.degreeV;
     if (2 * std::max(p, q) > kMaxNurbsDegree) return 0.0;  // beyond the Bernstein products' fixed rows
     const std::size_t count = net.net.size();
-    std::vector<Eigen::Vector3d> y(count);
-    std::vector<double> z(count), w(count);
+    Scratch& m = scratch_;
+    // Every form below is held scaled by its binomials (x̃_ij = C(n,i)·C(m,j)·x_ij): a Bernstein product is then
+    // a plain sum of products, one multiply-add per term, unscaled once at the end.
+    for (auto* v : {&m.x, &m.y, &m.z, &m.axial, &m.w}) v->resize(count);
     double yMax = 0, wMax = 0, reach = 0;
-    for (std::size_t k = 0; k < count; ++k) {
-      w[k] = net.net[k][3];
-      y[k] = net.net[k].head<3>() - circle.centre * w[k];
-      z[k] = circle.axis.dot(y[k]);
-      yMax = std::max(yMax, y[k].norm());
-      wMax = std::max(wMax, w[k]);
-      reach = std::max(reach, net.net[k].head<3>().norm());
-    }
-    const auto times = [](double a, double b) { return a * b; };
-    std::vector<double> yy, zz, ww;
-    product(p, q, y, p, q, y, dotOf, 0.0, yy);
-    product(p, q, z, p, q, z, times, 0.0, zz);
-    product(p, q, w, p, q, w, times, 0.0, ww);
-    // One product for both terms: pairs (u, ρ²-form) times (u, W²), u = |y|² + (R² − s²)W².
+    for (int i = 0; i <= p; ++i)
+      for (int j = 0; j <= q; ++j) {
+        const auto k = static_cast<std::size_t>(i * (q + 1) + j);
+        const double w = net.net[k][3], scale = binomial(p, i) * binomial(q, j);
+        const Eigen::Vector3d y = net.net[k].head<3>() - circle.centre * w;
+        m.x[k] = scale * y[0];
+        m.y[k] = scale * y[1];
+        m.z[k] = scale * y[2];
+        m.axial[k] = scale * circle.axis.dot(y);
+        m.w[k] = scale * w;
+        yMax = std::max(yMax, y.norm());
+        wMax = std::max(wMax, w);
+        reach = std::max(reach, net.net[k].head<3>().norm());
+      }
+    // |y|², (axis·y)² and W², degree (2p, 2q).
+    const std::size_t squares = static_cast<std::size_t>((2 * p + 1) * (2 * q + 1));
+    for (auto* v : {&m.yy, &m.zz, &m.ww}) v->assign(squares, 0.0);
+    for (const auto* c : {&m.x, &m.y, &m.z}) addScaledProduct(p, q, c->data(), c->data(), 1.0, m.yy.data());
+    addScaledProduct(p, q, m.axial.data(), m.axial.data(), 1.0, m.zz.data());
+    addScaledProduct(p, q, m.w.data(), m.w.data(), 1.0, m.ww.data());
+    // The quartic u² − 4R²·ρ²·W², u = |y|² + (R² − s²)W², ρ² = |y|² − (axis·y)²: the squares' scaled coefficients
+    // are already those of degree (2p, 2q), as the products need.
     const double shift = R_ * R_ - s * s, fourR2 = 4 * R_ * R_;
-    std::vector<Eigen::Vector2d> left(yy.size()), right(yy.size());
-    for (std::size_t k = 0; k < yy.size(); ++k) {
-      left[k] = {yy[k] + shift * ww[k], yy[k] - zz[k]};
-      right[k] = {left[k][0], ww[k]};
+    for (auto* v : {&m.u, &m.rho2}) v->resize(squares);
+    for (std::size_t k = 0; k < squares; ++k) {
+      m.u[k] = m.yy[k] + shift * m.ww[k];
+      m.rho2[k] = m.yy[k] - m.zz[k];
     }
-    std::vector<double> quartic;
-    product(2 * p, 2 * q, left, 2 * p, 2 * q, right,
-            [fourR2](const Eigen::Vector2d& l, const Eigen::Vector2d& r) { return l[0] * r[0] - fourR2 * l[1] * r[1]; },
-            0.0, quartic);
+    std::vector<double>& quartic = m.quartic;
+    quartic.assign(static_cast<std::size_t>((4 * p + 1) * (4 * q + 1)), 0.0);
+    addScaledProduct(2 * p, 2 * q, m.u.data(), m.u.data(), 1.0, quartic.data());
+    addScaledProduct(2 * p, 2 * q, m.rho2.data(), m.ww.data(), -fourR2, quartic.data());
+    for (int i = 0; i <= 4 * p; ++i)
+      for (int j = 0; j <= 4 * q; ++j)
+        quartic[static_cast<std::size_t>(i * (4 * q + 1) + j)] /= binomial(4 * p, i) * binomial(4 * q, j);
     // Rounding: each coefficient is a mean of products of means of products; counted per unit of the largest
     // terms, with y's own rounding (ε of |X| + |centre|·W) on top.
     const double uMax = yMax * yMax + std::abs(shift) * wMax * wMax;
@@ -180,12 +226,27 @@ bool SupportTube::proved(NodeMemo& memo, std::vector<ProvedBox>& boxes, const Pa
     const double scale = uMax * uMax + 4 * R_ * R_ * yMax * yMax * wMax * wMax;
     const double allowance =
         kEps * (4 * terms * scale + 16 * (uMax + 4 * R_ * R_ * wMax * wMax) * yMax * (reach + circle.centre.norm() * wMax));
-    for (const double f : quartic) {
-      if (!(inside ? f <= -allowance : f >= allowance)) return 0.0;
+    const bool byCoefficients = std::all_of(quartic.begin(), quartic.end(),
+                                            [&](double f) { return inside ? f <= -allowance : f >= allowance; });
+    if (byCoefficients) return 1.0;
+    // Next to the contact the quartic's least value on the outer side is a sliver of the tolerance, which the
+    // coefficients reach only at ~1e-5 of a patch (a cross term's coefficients fall below its values). The
+    // quartic is convex there: proved so, its extreme is exact to rounding.
+    if (4 * std::max(p, q) > kMaxNurbsDegree) return 0.0;
+    double largest = 0;
+    for (double& f : quartic) {
+      if (!inside) f = -f;
+      largest = std::max(largest, std::abs(f));
     }
-      return 1.0;
+    if (!(largest > 0)) return 0.0;
+    const SupportBound b = certifyPolynomialMaximum(4 * p, 4 * q, quartic.data(), allowance / largest);
+    return b.proved && b.upper <= -allowance ? 1.0 : 0.0;
   }) > 0;
-  if (result) boxes.push_back({node.patch, node.s0, node.s1, node.t0, node.t1});
+  if (result) {
+    const auto patch = static_cast<std::size_t>(node.patch);
+    if (patch >= boxes.size()) boxes.resize(patch + 1);
+    boxes[patch].push_back({node.s0, node.s1, node.t0, node.t1});
+  }
   return result;
 }
 

@@ -42,12 +42,12 @@ class SupportTube {
   /// A part of a patch proved on its side: so is every node inside it (a subpatch of a part inside the tube is
   /// inside it), which spares their forms; the search visits the larger nodes first.
   struct ProvedBox {
-    int patch;
     double s0, s1, t0, t1;
   };
-  static bool covered(const std::vector<ProvedBox>& boxes, const PatchNode& node);
+  using ProvedBoxes = std::vector<std::vector<ProvedBox>>;  // per patch: the search asks ~50 times per node made
+  static bool covered(const ProvedBoxes& boxes, const PatchNode& node);
   /// Is the node inside (inside = true) the tube of radius s about the circle, or outside it? Proved.
-  bool proved(NodeMemo& memo, std::vector<ProvedBox>& boxes, const PatchNode& node, const Circle& circle, double s,
+  bool proved(NodeMemo& memo, ProvedBoxes& boxes, const PatchNode& node, const Circle& circle, double s,
               bool inside);
 
   bool innerIsA_ = true;
@@ -55,7 +55,10 @@ class SupportTube {
   double R_ = 0, inner_ = 0, outer_ = 0;  // core circle radius; the tube radii the two sides are tested against
   Circle circleA_, circleB_;               // the circle in A's and in B's frame
   NodeMemo innerMemo_, outerMemo_;
-  std::vector<ProvedBox> innerBoxes_, outerBoxes_;
+  struct Scratch {  // the quartic's forms, kept between nodes (one search makes tens of them)
+    std::vector<double> x, y, z, axial, w, yy, zz, ww, u, rho2, quartic;
+  } scratch_;
+  ProvedBoxes innerBoxes_, outerBoxes_;
 };
 
 }  // namespace unidist::nurbs
