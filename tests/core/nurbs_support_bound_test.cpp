@@ -2,11 +2,13 @@
 // truth on the rational sphere and torus, and against dense sampling refined around its best sample on random
 // subpatches of the sphere, the torus and the bicubic wavy patch: never below the surface, exact to rounding
 // where proved, refused where the patch does not curve away (a saddle, a patch seen from behind).
+#include "nurbs/bspline.h"
 #include "nurbs/patch_tree.h"
 #include "nurbs/support_bound.h"
 #include "nurbs_fixtures.h"
 #include "unidist/nurbs.h"
 
+#include <Eigen/LU>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -225,6 +227,95 @@ TEST(SupportBound, BrokenNetsAreRefusedWithoutACrash) {
   zeroWeight.at(0, 1) = Eigen::Vector4d::Zero();
   EXPECT_FALSE(nurbs::certifySupport(zeroWeight, n).proved);
   EXPECT_FALSE(nurbs::certifySupport(p, Vec(std::nan(""), 0, 0)).proved);
+}
+
+// ---- certifyPolynomialMaximum (the tube separator's quartic) ----------------------------------------------
+
+/// Bernstein coefficients (degree n × n, u-major) of f, by interpolation on a uniform grid.
+template <class F>
+std::vector<double> bernsteinOf(int n, const F& f) {
+  const int count = (n + 1) * (n + 1);
+  Eigen::MatrixXd basis(count, count);
+  Eigen::VectorXd values(count);
+  for (int a = 0; a <= n; ++a)
+    for (int b = 0; b <= n; ++b) {
+      const double s = double(a) / n, t = double(b) / n;
+      std::array<std::array<double, kMaxNurbsDegree + 1>, 3> bs, bt;
+      nurbs::bernstein(n, s, bs);
+      nurbs::bernstein(n, t, bt);
+      for (int i = 0; i <= n; ++i)
+        for (int j = 0; j <= n; ++j) basis(a * (n + 1) + b, i * (n + 1) + j) = bs[0][std::size_t(i)] * bt[0][std::size_t(j)];
+      values[a * (n + 1) + b] = f(s, t);
+    }
+  const Eigen::VectorXd c = basis.fullPivLu().solve(values);
+  return std::vector<double>(c.data(), c.data() + count);
+}
+
+/// The polynomial's value from its coefficients, sampled on a grid, refined around the best sample.
+double sampledPolynomialMax(int n, const std::vector<double>& c) {
+  const auto at = [&](double s, double t) {
+    std::array<std::array<double, kMaxNurbsDegree + 1>, 3> bs, bt;
+    nurbs::bernstein(n, s, bs);
+    nurbs::bernstein(n, t, bt);
+    double sum = 0;
+    for (int i = 0; i <= n; ++i)
+      for (int j = 0; j <= n; ++j) sum += bs[0][std::size_t(i)] * bt[0][std::size_t(j)] * c[std::size_t(i * (n + 1) + j)];
+    return sum;
+  };
+  double best = -std::numeric_limits<double>::infinity(), bs = 0.5, bt = 0.5, span = 1;
+  for (int level = 0; level < 6; ++level, span /= 20) {
+    const double s0 = std::max(0.0, bs - span / 2), t0 = std::max(0.0, bt - span / 2);
+    for (int a = 0; a <= 40; ++a)
+      for (int b = 0; b <= 40; ++b) {
+        const double s = std::min(1.0, s0 + span * a / 40), t = std::min(1.0, t0 + span * b / 40);
+        if (const double v = at(s, t); v > best) best = v, bs = s, bt = t;
+      }
+  }
+  return best;
+}
+
+// A concave quadratic with a strong cross term, held at degree 8 as the tube's quartic of a biquadratic patch
+// is: its coefficients stay short of its maximum, which concavity proves exactly (wherever it lies, inside the
+// square or on its edge); a saddle is refused; no bound ever falls below a sample.
+TEST(PolynomialMaximum, ConcaveFormsAreExactSaddlesRefusedNothingUnderestimated) {
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<double> centre(-0.3, 1.3), cross(-1.9, 1.9), level(-1, 1);
+  int exactInside = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    const double a = centre(rng), b = centre(rng), k = cross(rng), d = level(rng);
+    const auto concave = [&](double s, double t) {
+      return d - ((s - a) * (s - a) + (t - b) * (t - b) + k * (s - a) * (t - b));
+    };
+    const std::vector<double> c = bernsteinOf(8, concave);
+    double coefficientMax = -std::numeric_limits<double>::infinity();
+    for (double x : c) coefficientMax = std::max(coefficientMax, x);
+    const nurbs::SupportBound bound = nurbs::certifyPolynomialMaximum(8, 8, c.data(), 0);
+    const double sampled = sampledPolynomialMax(8, c);
+    ASSERT_TRUE(bound.proved) << a << " " << b << " " << k;
+    EXPECT_GE(bound.upper, sampled - 1e-15);
+    EXPECT_LE(bound.upper, sampled + 1e-12);
+    if (a > 0 && a < 1 && b > 0 && b < 1) {
+      EXPECT_NEAR(bound.upper, d, 1e-12);
+      EXPECT_GT(coefficientMax, d + 1e-6);  // what the coefficients alone give
+      ++exactInside;
+    }
+    const std::vector<double> saddle = bernsteinOf(8, [&](double s, double t) {
+      return d - ((s - a) * (s - a) - (t - b) * (t - b) + k * (s - a) * (t - b));
+    });
+    const nurbs::SupportBound refused = nurbs::certifyPolynomialMaximum(8, 8, saddle.data(), 0);
+    if (refused.proved) {
+      EXPECT_GE(refused.upper, sampledPolynomialMax(8, saddle) - 1e-15);
+    }
+  }
+  EXPECT_GT(exactInside, 50);
+}
+
+TEST(PolynomialMaximum, NonFiniteCoefficientsAreNotProved) {
+  std::vector<double> c(81, -1.0);
+  c[40] = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_FALSE(nurbs::certifyPolynomialMaximum(8, 8, c.data(), 0).proved);
+  c[40] = std::numeric_limits<double>::infinity();
+  EXPECT_FALSE(nurbs::certifyPolynomialMaximum(8, 8, c.data(), 0).proved);
 }
 
 }  // namespace

@@ -53,6 +53,23 @@ double distanceToCircle(const Eigen::Vector3d& x, const Eigen::Vector3d& centre,
   return std::hypot((r - z * axis).norm() - R, z);
 }
 
+/// Proved outside the tube of radius s about the circle (radius R) from the node's control points alone, whose
+/// hull holds the node: all of them beyond the tube's slab on one side (the distance to the circle is at least
+/// the height over its plane), or all within R − s of the axis (the distance to the axis is convex, so it is
+/// largest over the hull at one of them). A node far from the tube is settled without its quartic.
+bool outsideByHull(const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& centre,
+                   const Eigen::Vector3d& axis, double R, double s) {
+  double low = std::numeric_limits<double>::infinity(), high = -low, farthest = 0;
+  for (const Eigen::Vector3d& x : points) {
+    const Eigen::Vector3d r = x - centre;
+    const double z = axis.dot(r);
+    low = std::min(low, z);
+    high = std::max(high, z);
+    farthest = std::max(farthest, (r - z * axis).squaredNorm());
+  }
+  return low >= s || high <= -s || std::sqrt(farthest) <= R - s;
+}
+
 /// The Bernstein product of two degree-(n, m) forms held scaled by their binomials (x̃_ij = C(n,i)·C(m,j)·x_ij),
 /// times `factor`, added to `out` (degree (2n, 2m), scaled the same way: C(2n,I)·C(2m,J) times the coefficient).
 /// N, M: n and m where they are known at compile time (the loops unrolled), else -1.
@@ -170,10 +187,11 @@ bool SupportTube::proved(NodeMemo& memo, ProvedBoxes& boxes, const PatchNode& no
                          double s, bool inside) {
   if (covered(boxes, node)) return true;
   const bool result = memo.get(node, [&] {
-      // The ball first: the distance to the circle moves by at most the radius over it.
+    // The ball first: the distance to the circle moves by at most the radius over it.
     const double atCentre = distanceToCircle(node.ball.center, circle.centre, circle.axis, R_);
     if (inside ? atCentre + node.ball.radius <= s : atCentre - node.ball.radius >= s) return 1.0;
     if (inside ? atCentre - node.ball.radius > s : atCentre + node.ball.radius < s) return 0.0;  // on the wrong side
+    if (!inside && outsideByHull(node.points, circle.centre, circle.axis, R_, s)) return 1.0;
     // The quartic (|y|² + (R² − s²)W² )² − 4R²(|y|² − z²)W², y = X − centre·W, z = axis·y, in Bernstein form.
     const RationalBezierPatch& net = node.net;
     const int p = net.degreeU, q = net.degreeV;
