@@ -183,6 +183,60 @@ bool SupportTube::covered(const ProvedBoxes& boxes, const PatchNode& node) {
   });
 }
 
+std::vector<double>& SupportTube::quarticOf(const RationalBezierPatch& net, const Circle& circle, double s,
+                                            double& allowance) {
+  const int p = net.degreeU, q = net.degreeV;
+  const std::size_t count = net.net.size();
+  Scratch& m = scratch_;
+  // Every form below is held scaled by its binomials (x̃_ij = C(n,i)·C(m,j)·x_ij): a Bernstein product is then
+  // a plain sum of products, one multiply-add per term, unscaled once at the end.
+  for (auto* v : {&m.x, &m.y, &m.z, &m.axial, &m.w}) v->resize(count);
+  double yMax = 0, wMax = 0, reach = 0;
+  for (int i = 0; i <= p; ++i)
+    for (int j = 0; j <= q; ++j) {
+      const auto k = static_cast<std::size_t>(i * (q + 1) + j);
+      const double w = net.net[k][3], scale = binomial(p, i) * binomial(q, j);
+      const Eigen::Vector3d y = net.net[k].head<3>() - circle.centre * w;
+      m.x[k] = scale * y[0];
+      m.y[k] = scale * y[1];
+      m.z[k] = scale * y[2];
+      m.axial[k] = scale * circle.axis.dot(y);
+      m.w[k] = scale * w;
+      yMax = std::max(yMax, y.norm());
+      wMax = std::max(wMax, w);
+      reach = std::max(reach, net.net[k].head<3>().norm());
+    }
+  // |y|², (axis·y)² and W², degree (2p, 2q).
+  const std::size_t squares = static_cast<std::size_t>((2 * p + 1) * (2 * q + 1));
+  for (auto* v : {&m.yy, &m.zz, &m.ww}) v->assign(squares, 0.0);
+  for (const auto* c : {&m.x, &m.y, &m.z}) addScaledProduct(p, q, c->data(), c->data(), 1.0, m.yy.data());
+  addScaledProduct(p, q, m.axial.data(), m.axial.data(), 1.0, m.zz.data());
+  addScaledProduct(p, q, m.w.data(), m.w.data(), 1.0, m.ww.data());
+  // The quartic u² − 4R²·ρ²·W², u = |y|² + (R² − s²)W², ρ² = |y|² − (axis·y)²: the squares' scaled coefficients
+  // are already those of degree (2p, 2q), as the products need.
+  const double shift = R_ * R_ - s * s, fourR2 = 4 * R_ * R_;
+  for (auto* v : {&m.u, &m.rho2}) v->resize(squares);
+  for (std::size_t k = 0; k < squares; ++k) {
+    m.u[k] = m.yy[k] + shift * m.ww[k];
+    m.rho2[k] = m.yy[k] - m.zz[k];
+  }
+  std::vector<double>& quartic = m.quartic;
+  quartic.assign(static_cast<std::size_t>((4 * p + 1) * (4 * q + 1)), 0.0);
+  addScaledProduct(2 * p, 2 * q, m.u.data(), m.u.data(), 1.0, quartic.data());
+  addScaledProduct(2 * p, 2 * q, m.rho2.data(), m.ww.data(), -fourR2, quartic.data());
+  for (int i = 0; i <= 4 * p; ++i)
+    for (int j = 0; j <= 4 * q; ++j)
+      quartic[static_cast<std::size_t>(i * (4 * q + 1) + j)] /= binomial(4 * p, i) * binomial(4 * q, j);
+  // Rounding: each coefficient is a mean of products of means of products; counted per unit of the largest
+  // terms, with y's own rounding (ε of |X| + |centre|·W) on top.
+  const double uMax = yMax * yMax + std::abs(shift) * wMax * wMax;
+  const double terms = (p + 1) * (q + 1) + (2 * p + 1) * (2 * q + 1) + 16;
+  const double scale = uMax * uMax + 4 * R_ * R_ * yMax * yMax * wMax * wMax;
+  allowance =
+      kEps * (4 * terms * scale + 16 * (uMax + 4 * R_ * R_ * wMax * wMax) * yMax * (reach + circle.centre.norm() * wMax));
+  return quartic;
+}
+
 bool SupportTube::proved(NodeMemo& memo, ProvedBoxes& boxes, const PatchNode& node, const Circle& circle,
                          double s, bool inside) {
   if (covered(boxes, node)) return true;
@@ -192,58 +246,11 @@ bool SupportTube::proved(NodeMemo& memo, ProvedBoxes& boxes, const PatchNode& no
     if (inside ? atCentre + node.ball.radius <= s : atCentre - node.ball.radius >= s) return 1.0;
     if (inside ? atCentre - node.ball.radius > s : atCentre + node.ball.radius < s) return 0.0;  // on the wrong side
     if (!inside && outsideByHull(node.points, circle.centre, circle.axis, R_, s)) return 1.0;
-    // The quartic (|y|² + (R² − s²)W² )² − 4R²(|y|² − z²)W², y = X − centre·W, z = axis·y, in Bernstein form.
     const RationalBezierPatch& net = node.net;
     const int p = net.degreeU, q = net.degreeV;
     if (2 * std::max(p, q) > kMaxNurbsDegree) return 0.0;  // beyond the Bernstein products' fixed rows
-    const std::size_t count = net.net.size();
-    Scratch& m = scratch_;
-    // Every form below is held scaled by its binomials (x̃_ij = C(n,i)·C(m,j)·x_ij): a Bernstein product is then
-    // a plain sum of products, one multiply-add per term, unscaled once at the end.
-    for (auto* v : {&m.x, &m.y, &m.z, &m.axial, &m.w}) v->resize(count);
-    double yMax = 0, wMax = 0, reach = 0;
-    for (int i = 0; i <= p; ++i)
-      for (int j = 0; j <= q; ++j) {
-        const auto k = static_cast<std::size_t>(i * (q + 1) + j);
-        const double w = net.net[k][3], scale = binomial(p, i) * binomial(q, j);
-        const Eigen::Vector3d y = net.net[k].head<3>() - circle.centre * w;
-        m.x[k] = scale * y[0];
-        m.y[k] = scale * y[1];
-        m.z[k] = scale * y[2];
-        m.axial[k] = scale * circle.axis.dot(y);
-        m.w[k] = scale * w;
-        yMax = std::max(yMax, y.norm());
-        wMax = std::max(wMax, w);
-        reach = std::max(reach, net.net[k].head<3>().norm());
-      }
-    // |y|², (axis·y)² and W², degree (2p, 2q).
-    const std::size_t squares = static_cast<std::size_t>((2 * p + 1) * (2 * q + 1));
-    for (auto* v : {&m.yy, &m.zz, &m.ww}) v->assign(squares, 0.0);
-    for (const auto* c : {&m.x, &m.y, &m.z}) addScaledProduct(p, q, c->data(), c->data(), 1.0, m.yy.data());
-    addScaledProduct(p, q, m.axial.data(), m.axial.data(), 1.0, m.zz.data());
-    addScaledProduct(p, q, m.w.data(), m.w.data(), 1.0, m.ww.data());
-    // The quartic u² − 4R²·ρ²·W², u = |y|² + (R² − s²)W², ρ² = |y|² − (axis·y)²: the squares' scaled coefficients
-    // are already those of degree (2p, 2q), as the products need.
-    const double shift = R_ * R_ - s * s, fourR2 = 4 * R_ * R_;
-    for (auto* v : {&m.u, &m.rho2}) v->resize(squares);
-    for (std::size_t k = 0; k < squares; ++k) {
-      m.u[k] = m.yy[k] + shift * m.ww[k];
-      m.rho2[k] = m.yy[k] - m.zz[k];
-    }
-    std::vector<double>& quartic = m.quartic;
-    quartic.assign(static_cast<std::size_t>((4 * p + 1) * (4 * q + 1)), 0.0);
-    addScaledProduct(2 * p, 2 * q, m.u.data(), m.u.data(), 1.0, quartic.data());
-    addScaledProduct(2 * p, 2 * q, m.rho2.data(), m.ww.data(), -fourR2, quartic.data());
-    for (int i = 0; i <= 4 * p; ++i)
-      for (int j = 0; j <= 4 * q; ++j)
-        quartic[static_cast<std::size_t>(i * (4 * q + 1) + j)] /= binomial(4 * p, i) * binomial(4 * q, j);
-    // Rounding: each coefficient is a mean of products of means of products; counted per unit of the largest
-    // terms, with y's own rounding (ε of |X| + |centre|·W) on top.
-    const double uMax = yMax * yMax + std::abs(shift) * wMax * wMax;
-    const double terms = (p + 1) * (q + 1) + (2 * p + 1) * (2 * q + 1) + 16;
-    const double scale = uMax * uMax + 4 * R_ * R_ * yMax * yMax * wMax * wMax;
-    const double allowance =
-        kEps * (4 * terms * scale + 16 * (uMax + 4 * R_ * R_ * wMax * wMax) * yMax * (reach + circle.centre.norm() * wMax));
+    double allowance = 0;
+    std::vector<double>& quartic = quarticOf(net, circle, s, allowance);
     const bool byCoefficients = std::all_of(quartic.begin(), quartic.end(),
                                             [&](double f) { return inside ? f <= -allowance : f >= allowance; });
     if (byCoefficients) return 1.0;

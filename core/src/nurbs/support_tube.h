@@ -6,7 +6,9 @@
 // inside the tube of radius s and one outside the tube of radius s + g are at least g apart. "Inside the tube
 // of radius s" is the sign of the torus's quartic, (|x|² + R² − s²)² − 4R²ρ² (ρ: distance from the axis), on the
 // node: its Bernstein coefficients times W⁴, of degree (4p, 4q), exact for a torus's own patches at any size and
-// second order in the size elsewhere. Two linked rings are the case this is for. Internal.
+// second order in the size elsewhere; next to the contact, where that order falls short of the tolerance's
+// margin, the quartic is convex and its extreme is proved exactly (support_bound.h). Two linked rings are the
+// case this is for. Internal.
 #pragma once
 
 #include "nurbs/patch_tree.h"
@@ -46,6 +48,10 @@ class SupportTube {
   };
   using ProvedBoxes = std::vector<std::vector<ProvedBox>>;  // per patch: the search asks ~50 times per node made
   static bool covered(const ProvedBoxes& boxes, const PatchNode& node);
+  /// The Bernstein coefficients (degree (4p, 4q), in the scratch) of the tube's quartic over the net,
+  /// (|y|² + (R² − s²)W²)² − 4R²(|y|² − z²)W² with y = X − centre·W, z = axis·y: negative inside the tube of
+  /// radius s, positive outside. `allowance`: how far a coefficient may be off by rounding.
+  std::vector<double>& quarticOf(const RationalBezierPatch& net, const Circle& circle, double s, double& allowance);
   /// Is the node inside (inside = true) the tube of radius s about the circle, or outside it? Proved.
   bool proved(NodeMemo& memo, ProvedBoxes& boxes, const PatchNode& node, const Circle& circle, double s,
               bool inside);
