@@ -244,7 +244,8 @@ std::vector<double> bernsteinOf(int n, const F& f) {
       nurbs::bernstein(n, s, bs);
       nurbs::bernstein(n, t, bt);
       for (int i = 0; i <= n; ++i)
-        for (int j = 0; j <= n; ++j) basis(a * (n + 1) + b, i * (n + 1) + j) = bs[0][std::size_t(i)] * bt[0][std::size_t(j)];
+        for (int j = 0; j <= n; ++j)
+          basis(a * (n + 1) + b, i * (n + 1) + j) = bs[0][std::size_t(i)] * bt[0][std::size_t(j)];
       values[a * (n + 1) + b] = f(s, t);
     }
   const Eigen::VectorXd c = basis.fullPivLu().solve(values);
@@ -259,7 +260,8 @@ double sampledPolynomialMax(int n, const std::vector<double>& c) {
     nurbs::bernstein(n, t, bt);
     double sum = 0;
     for (int i = 0; i <= n; ++i)
-      for (int j = 0; j <= n; ++j) sum += bs[0][std::size_t(i)] * bt[0][std::size_t(j)] * c[std::size_t(i * (n + 1) + j)];
+      for (int j = 0; j <= n; ++j)
+        sum += bs[0][std::size_t(i)] * bt[0][std::size_t(j)] * c[std::size_t(i * (n + 1) + j)];
     return sum;
   };
   double best = -std::numeric_limits<double>::infinity(), bs = 0.5, bt = 0.5, span = 1;

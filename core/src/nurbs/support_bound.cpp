@@ -299,8 +299,11 @@ SupportBound certifyPolynomialMaximum(int p, int q, const double* coefficients, 
     Height out{0, Eigen::Vector2d::Zero(), Eigen::Matrix2d::Zero()};
     for (int i = 0; i <= p; ++i) {
       double row[3] = {0, 0, 0};  // Σ_j B_j^(k)(t) c_ij
-      for (int j = 0; j <= q; ++j)
-        for (int k = 0; k < 3; ++k) row[k] += bt[static_cast<std::size_t>(k)][static_cast<std::size_t>(j)] * coefficients[i * (q + 1) + j];
+      for (int j = 0; j <= q; ++j) {
+        const double c = coefficients[i * (q + 1) + j];
+        const auto uj = static_cast<std::size_t>(j);
+        for (std::size_t k = 0; k < 3; ++k) row[k] += bt[k][uj] * c;
+      }
       const auto ui = static_cast<std::size_t>(i);
       out.g += bs[0][ui] * row[0];
       out.grad[0] += bs[1][ui] * row[0];

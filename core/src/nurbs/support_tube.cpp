@@ -232,8 +232,8 @@ std::vector<double>& SupportTube::quarticOf(const RationalBezierPatch& net, cons
   const double uMax = yMax * yMax + std::abs(shift) * wMax * wMax;
   const double terms = (p + 1) * (q + 1) + (2 * p + 1) * (2 * q + 1) + 16;
   const double scale = uMax * uMax + 4 * R_ * R_ * yMax * yMax * wMax * wMax;
-  allowance =
-      kEps * (4 * terms * scale + 16 * (uMax + 4 * R_ * R_ * wMax * wMax) * yMax * (reach + circle.centre.norm() * wMax));
+  const double ofY = 16 * (uMax + 4 * R_ * R_ * wMax * wMax) * yMax * (reach + circle.centre.norm() * wMax);
+  allowance = kEps * (4 * terms * scale + ofY);
   return quartic;
 }
 
