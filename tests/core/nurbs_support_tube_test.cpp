@@ -29,41 +29,8 @@ const nurbs_truth::Placement& linked() {
                        [](const auto& p) { return std::string(p.name) == "torus-torus linked offset"; });
 }
 
-/// The linked rings' closest pair, from the distance query itself: patch parameters of the two points.
-struct ClosestPair {
-  int patchA, patchB;
-  Eigen::Vector2d xA, xB;
-  Vec pA, pB;
-};
-ClosestPair closestPair(const NurbsModel& torus, const Eigen::Isometry3d& X_AB) {
-  const DistanceResult r = distance(torus, Eigen::Isometry3d::Identity(), torus, X_AB, DistanceOptions{});
-  ClosestPair c{-1, -1, {}, {}, r.pointA, X_AB.inverse() * r.pointB};
-  // The patch and parameters of each point: the patch whose Newton projection lands on it.
-  const auto locate = [&](const Vec& p, int& patch, Eigen::Vector2d& x) {
-    double best = std::numeric_limits<double>::infinity();
-    for (std::size_t k = 0; k < torus.patches().size(); ++k)
-      for (int i = 0; i <= 64; ++i)
-        for (int j = 0; j <= 64; ++j) {
-          const Eigen::Vector2d y(i / 64.0, j / 64.0);
-          const double d = (torus.patches()[k].derivatives(y[0], y[1]).point - p).norm();
-          if (d < best) best = d, patch = static_cast<int>(k), x = y;
-        }
-    for (int step = 0; step < 30; ++step) {  // Gauss-Newton onto the point
-      const SurfaceDerivatives d = torus.patches()[static_cast<std::size_t>(patch)].derivatives(x[0], x[1]);
-      Eigen::Matrix<double, 3, 2> J;
-      J << d.du, d.dv;
-      x = (x - (J.transpose() * J).ldlt().solve(J.transpose() * (d.point - p))).cwiseMax(0.0).cwiseMin(1.0);
-    }
-  };
-  const Vec pBinB = c.pB;
-  c.pB = X_AB * pBinB;
-  locate(c.pA, c.patchA, c.xA);
-  locate(pBinB, c.patchB, c.xB);
-  return c;
-}
-
 std::optional<SupportTube> fitTo(const NurbsModel& torus, const Eigen::Isometry3d& X_AB, double needed, double tol) {
-  const ClosestPair c = closestPair(torus, X_AB);
+  const nurbs_pair_helpers::ClosestPair c = nurbs_pair_helpers::closestPair(torus, torus, X_AB);
   return SupportTube::fit({torus.patches()[static_cast<std::size_t>(c.patchA)], c.xA,
                            torus.patches()[static_cast<std::size_t>(c.patchB)], c.xB, X_AB, c.pA, c.pB},
                           needed, tol);

@@ -104,20 +104,31 @@ class NodeMemo {
  public:
   template <class Make>
   double get(const PatchNode& node, Make&& make) {
+    if (const double* known = find(node)) return *known;
+    const double value = make();
+    set(node, value);
+    return value;
+  }
+
+  /// The node's value, or none where it has none yet (valid until the next value is recorded).
+  const double* find(const PatchNode& node) const {
     if (hashed_.empty()) {
       for (const auto& [key, value] : entries_)
-        if (key == &node) return value;
-    } else if (const auto it = hashed_.find(&node); it != hashed_.end()) {
-      return it->second;
+        if (key == &node) return &value;
+      return nullptr;
     }
-    const double value = make();
+    const auto it = hashed_.find(&node);
+    return it == hashed_.end() ? nullptr : &it->second;
+  }
+
+  /// Records the value of a node that has none yet.
+  void set(const PatchNode& node, double value) {
     if (entries_.size() < kScanned) {
       entries_.emplace_back(&node, value);
     } else {
       if (hashed_.empty()) hashed_.insert(entries_.begin(), entries_.end());
       hashed_.emplace(&node, value);
     }
-    return value;
   }
 
  private:

@@ -118,18 +118,30 @@ std::optional<SupportBall> SupportBall::fit(const SeparatorContact& contact) {
   return ball;
 }
 
-double SupportBall::certified(NodeMemo& memo, const PatchNode& node, const Eigen::Vector3d& centre,
-                              const Eigen::Vector3d& contact, bool farthest, double enough) {
-  return memo.get(node, [&] {
+double SupportBall::certified(NodeMemo& memo, const PatchNode& node, const PatchNode* parent,
+                              const Eigen::Vector3d& centre, const Eigen::Vector3d& contact, bool farthest,
+                              double enough) {
+  if (const double* known = memo.find(node)) return *known;
+  // The parent's extreme holds for the node: where it already does, no certificate (a sphere's children all
+  // inherit its radius).
+  const double* ofParent = parent ? memo.find(*parent) : nullptr;
+  const double inherited = ofParent ? *ofParent : (farthest ? kInf : 0.0);
+  double value = inherited;
+  if (farthest ? !(inherited <= enough) : !(inherited >= enough)) {
     const bool exact = (node.ball.center - contact).norm() <= kExactReach * node.ball.radius;
     const DistanceExtreme e = certifyDistanceExtreme(node.net, centre, farthest, exact, enough);
-    return e.proved ? e.value : (farthest ? kInf : 0.0);
-  });
+    if (e.proved) value = farthest ? std::min(value, e.value) : std::max(value, e.value);
+  }
+  memo.set(node, value);
+  return value;
 }
 
-double SupportBall::gap(const PatchNode& na, const PatchNode& nb, double needed) {
+double SupportBall::gap(const PatchNode& na, const PatchNode& nb, double needed, const PatchNode* parentA,
+                        const PatchNode* parentB) {
   const PatchNode& inner = innerIsB_ ? nb : na;
   const PatchNode& outer = innerIsB_ ? na : nb;
+  const PatchNode* innerParent = innerIsB_ ? parentB : parentA;
+  const PatchNode* outerParent = innerIsB_ ? parentA : parentB;
   const Eigen::Vector3d& cInner = innerIsB_ ? centreB_ : centreA_;
   const Eigen::Vector3d& cOuter = innerIsB_ ? centreA_ : centreB_;
   // Cheap bounds first: the farthest control point (|x − c| is convex, so its maximum over the hull is at one),
@@ -148,10 +160,12 @@ double SupportBall::gap(const PatchNode& na, const PatchNode& nb, double needed)
   const Eigen::Vector3d& pInner = innerIsB_ ? contactB_ : contactA_;
   const Eigen::Vector3d& pOuter = innerIsB_ ? contactA_ : contactB_;
   if (cornerNear - far < needed)
-    far = std::min(far, certified(innerIsB_ ? farB_ : farA_, inner, cInner, pInner, true, cornerNear - needed));
+    far = std::min(far, certified(innerIsB_ ? farB_ : farA_, inner, innerParent, cInner, pInner, true,
+                                  cornerNear - needed));
   if (cornerNear - far < needed) return near - far;
   if (near - far < needed)
-    near = std::max(near, certified(innerIsB_ ? nearA_ : nearB_, outer, cOuter, pOuter, false, needed + far));
+    near = std::max(near, certified(innerIsB_ ? nearA_ : nearB_, outer, outerParent, cOuter, pOuter, false,
+                                    needed + far));
   return near - far;
 }
 

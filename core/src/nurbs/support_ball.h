@@ -21,8 +21,11 @@ class SupportBall {
   static std::optional<SupportBall> fit(const SeparatorContact& contact);
 
   /// A proved lower bound of the distance between the two nodes (rounding of the nets aside, as for the other
-  /// bounds); certificates are made (and kept per node) only while the bound falls short of `needed`.
-  double gap(const PatchNode& na, const PatchNode& nb, double needed);
+  /// bounds); certificates are made (and kept per node) only while the bound falls short of `needed`. `parentA`,
+  /// `parentB`: nodes holding na and nb (their parents, or themselves), whose certified extremes they inherit
+  /// (a subpatch is no farther, and no nearer, than the patch holding it); null at the roots.
+  double gap(const PatchNode& na, const PatchNode& nb, double needed, const PatchNode* parentA = nullptr,
+             const PatchNode* parentB = nullptr);
 
   double radius() const { return radius_; }
   bool innerIsB() const { return innerIsB_; }
@@ -33,8 +36,8 @@ class SupportBall {
   /// Exact (by concavity) only for a node at the touching point `contact`; elsewhere the surface is clear of the
   /// sphere by a margin and the coefficient bound, second order in the node size, is what is worth its cost.
   /// `enough`: the value that would settle the pairs at hand (certifyDistanceExtreme sharpens a bound short of it).
-  double certified(NodeMemo& memo, const PatchNode& node, const Eigen::Vector3d& centre, const Eigen::Vector3d& contact,
-                   bool farthest, double enough);
+  double certified(NodeMemo& memo, const PatchNode& node, const PatchNode* parent, const Eigen::Vector3d& centre,
+                   const Eigen::Vector3d& contact, bool farthest, double enough);
 
   bool innerIsB_ = true;
   double radius_ = 0;

@@ -36,6 +36,7 @@ constexpr int kPairBudget = 20000;
 // bisection's bracket by a step.
 constexpr int kApartProofBudget = kPairBudget / 8;
 constexpr double kFlatAngle = 0.5;  // a node with a narrower normal cone is polished by Newton when popped
+constexpr double kRefitShare = 1e-3;  // of the tolerance: a best pair lowered by less keeps its separators
 constexpr int kSeedPairs = 3;       // root pairs Newton starts from before the search
 constexpr double kSameEnd = 1e-9;   // Newton ends this close in parameters are one (certified once)
 constexpr double kFirstRegion = 1.0 / 32;  // the first convexity box tried around a Newton end (patch parameters)
@@ -114,12 +115,12 @@ class PairSearch {
         const auto childrenA = a_.forest().children(*top.a, arena_);
         const auto childrenB = b_.forest().children(*top.b, arena_);
         for (const Node* ca : childrenA)
-          for (const Node* cb : childrenB) visit(ca, cb, top.wB - top.wA);
+          for (const Node* cb : childrenB) visit(ca, cb, top.wB - top.wA, top.a, top.b);
         ++popped;  // counted twice: a search the budget stops does about the work it did with one-node splits
         continue;
       }
       for (const Node* c : (splitA ? a_.forest() : b_.forest()).children(*n, arena_))
-        splitA ? visit(c, top.b, top.wB - top.wA) : visit(top.a, c, top.wB - top.wA);
+        splitA ? visit(c, top.b, top.wB - top.wA, top.a, top.b) : visit(top.a, c, top.wB - top.wA, top.a, top.b);
     }
     if (inside_) return Outcome::Crossing;
     return best_.value <= 0.5 * tolerance_ ? Outcome::Touching : Outcome::Proved;
@@ -229,6 +230,9 @@ class PairSearch {
   /// ball where one fits.
   void updateSeparators() {
     if (plane_.forBest == best_.value || !std::isfinite(best_.value)) return;
+    // The same minimum reached again, lower by rounding: the separators are kept. Any plane, ball or tube bounds
+    // the pairs soundly (only their fit makes them sharp), and a new fit would throw their certificates away.
+    if (plane_.forBest - best_.value <= kRefitShare * tolerance_) return;
     plane_ = {};
     ball_.reset();
     tube_.reset();
@@ -292,11 +296,13 @@ class PairSearch {
 
   /// Settled by the best pair's separator (margin: the rounding allowance of visit()): the plane at a convex
   /// contact, else the ball (support_ball.h) where one fits.
-  bool settledBySeparator(const Node& na, const Node& nb, double margin) {
+  /// parentA, parentB: the nodes holding na and nb (see SupportBall::gap), null at the roots.
+  bool settledBySeparator(const Node& na, const Node& nb, double margin, const Node* parentA = nullptr,
+                          const Node* parentB = nullptr) {
     const double needed = best_.value - 0.5 * tolerance_;
     double lower;
     if (plane_.convexContact) lower = planeGap(na, nb) - margin;
-    else if (ball_) lower = ball_->gap(na, nb, needed + margin) - margin;
+    else if (ball_) lower = ball_->gap(na, nb, needed + margin, parentA, parentB) - margin;
     else if (tube_) lower = tube_->gap(na, nb) - margin;
     else return false;
     if (lower < needed) return false;
@@ -449,7 +455,9 @@ class PairSearch {
   }
 
   /// hint: a direction from A toward B along which the pair is likely separated (the parent's), or zero.
-  void visit(const Node* na, const Node* nb, const Eigen::Vector3d& hint = Eigen::Vector3d::Zero()) {
+  /// parentA, parentB: the popped pair's nodes holding na and nb, null at the roots.
+  void visit(const Node* na, const Node* nb, const Eigen::Vector3d& hint = Eigen::Vector3d::Zero(),
+             const Node* parentA = nullptr, const Node* parentB = nullptr) {
     const Eigen::Vector3d cb = X_AB_ * nb->ball.center;
     const double margin = roundingMargin(*na, cb, *nb);
     // Balls first: a pair they already prune needs no GJK.
@@ -458,7 +466,7 @@ class PairSearch {
       lowerOfPruned_ = std::min(lowerOfPruned_, byBalls);
       return;
     }
-    if (settledByRegion(*na, *nb) || settledBySeparator(*na, *nb, margin)) return;
+    if (settledByRegion(*na, *nb) || settledBySeparator(*na, *nb, margin, parentA, parentB)) return;
     // The hulls' gap along one direction is a proved bound too: along the parent pair's closest-point direction
     // (or between the balls' centres) it often prunes the pair without running GJK. (Along the best pair's
     // direction from the control points alone: more instructions than the GJK runs it saves; the support plane
