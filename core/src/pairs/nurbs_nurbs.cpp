@@ -349,15 +349,21 @@ class PairSearch {
       lowest.push_back(open_.top());
       open_.pop();
     }
+    bool interiorEnd = false;
     for (const OpenPair& p : lowest) {
+      open_.push(p);
+      // An end inside both patches is a stationary pair, most likely the minimum's: the other seeds would end
+      // on its patches' edges (the search still starts Newton wherever it finds a flat pair away from it).
+      if (interiorEnd) continue;
       const Eigen::Vector2d sa = nearestControlParameters(*p.a, p.wA);
       const Eigen::Vector2d sb = nearestControlParameters(*p.b, R_BA_ * (p.wB - X_AB_.translation()));
-      polish(p.a->patch, p.b->patch, Eigen::Vector4d(sa[0], sa[1], sb[0], sb[1]));
-      open_.push(p);
+      const Eigen::Vector4d end = polish(p.a->patch, p.b->patch, Eigen::Vector4d(sa[0], sa[1], sb[0], sb[1]));
+      interiorEnd = (end.array() > 0).all() && (end.array() < 1).all();
     }
   }
 
-  void polish(int patchA, int patchB, const Eigen::Vector4d& x0) {
+  /// Newton from x0 in the two patches; returns where it ended.
+  Eigen::Vector4d polish(int patchA, int patchB, const Eigen::Vector4d& x0) {
     const nurbs::PairHit h = nurbs::polishPair(a_.patches()[static_cast<std::size_t>(patchA)],
                                                b_.patches()[static_cast<std::size_t>(patchB)], X_AB_, x0);
     iterations_ += h.evaluations;
@@ -371,6 +377,7 @@ class PairSearch {
       best_.patchB = patchB;
       noteCrossing(patchA);
     }
+    return h.x;
   }
 
   /// Solids crossing by a sliver (stacked rings sunk 1e-8 into each other along a circle) leave Newton stationary
