@@ -11,6 +11,7 @@
 #include "unidist/nurbs.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -23,36 +24,74 @@ struct BernsteinScratch {
   std::vector<Eigen::Vector3d> y;
 };
 
+namespace detail {
+
+/// The products' sums over all pairs of points, on binomial-scaled points (ỹ_ij = C(n,i)·C(m,j)·y_ij, likewise
+/// w̃): one multiply-add per term and coordinate, no weights. N, M: n and m where known at compile time (the loops
+/// unrolled), else -1.
+template <int N, int M, class Coeffs>
+inline void addScaledSquares(int n, int m, const Eigen::Vector3d* y, const double* w, Coeffs& A, Coeffs& W) {
+  if constexpr (N >= 0) n = N;
+  if constexpr (M >= 0) m = M;
+  const int cols = 2 * m + 1;
+  for (int i = 0; i <= n; ++i)
+    for (int j = 0; j <= m; ++j) {
+      const Eigen::Vector3d& yij = y[i * (m + 1) + j];
+      const double wij = w[i * (m + 1) + j];
+      for (int k = 0; k <= n; ++k)
+        for (int l = 0; l <= m; ++l) {
+          const auto at = static_cast<std::size_t>((i + k) * cols + j + l);
+          A[at] += yij.dot(y[k * (m + 1) + l]);
+          W[at] += wij * w[k * (m + 1) + l];
+        }
+    }
+}
+
+}  // namespace detail
+
 /// |X − q·W|² (into A) and W² (into W) in Bernstein form of degree (2n, 2m), coefficient (k, l) at k·(2m + 1) + l:
 /// products of the patch's degree-(n, m) forms, each coefficient a mean of products of control points (the
-/// weights C(n,i)·C(n,k−i) / C(2n,k) sum to one over i, likewise in m), each unordered pair of points taken once.
+/// weights C(n,i)·C(n,k−i) / C(2n,k) sum to one over i, likewise in m). The sums are taken on binomial-scaled
+/// points and scaled back once per coefficient (the same terms, so the same rounding order of magnitude).
 /// y (net.size() entries) receives X_ij − q·W_ij. Coeffs: anything with assign(size, value) and operator[].
 template <class Coeffs>
 void squaredDistanceForm(const RationalBezierPatch& patch, const Eigen::Vector3d& q, Eigen::Vector3d* y, Coeffs& A,
                          Coeffs& W) {
   const int n = patch.degreeU, m = patch.degreeV;
-  const std::size_t cols = static_cast<std::size_t>(2 * m + 1);
-  A.assign(static_cast<std::size_t>(2 * n + 1) * cols, 0.0);
-  W.assign(static_cast<std::size_t>(2 * n + 1) * cols, 0.0);
-  double cu[kMaxNurbsDegree + 1], cv[kMaxNurbsDegree + 1], inverseU[2 * kMaxNurbsDegree + 1],
-      inverseV[2 * kMaxNurbsDegree + 1];
-  for (int i = 0; i <= n; ++i) cu[i] = binomial(n, i);
-  for (int j = 0; j <= m; ++j) cv[j] = binomial(m, j);
-  for (int k = 0; k <= 2 * n; ++k) inverseU[k] = 1 / binomial(2 * n, k);
-  for (int l = 0; l <= 2 * m; ++l) inverseV[l] = 1 / binomial(2 * m, l);
+  const int cols = 2 * m + 1;
+  A.assign(static_cast<std::size_t>((2 * n + 1) * cols), 0.0);
+  W.assign(static_cast<std::size_t>((2 * n + 1) * cols), 0.0);
   const int count = (n + 1) * (m + 1);
-  for (int k = 0; k < count; ++k) y[k] = patch.net[static_cast<std::size_t>(k)].head<3>() - q * patch.net[static_cast<std::size_t>(k)][3];
-  for (int k1 = 0; k1 < count; ++k1) {
-    const int i = k1 / (m + 1), j = k1 % (m + 1);
-    const double w1 = patch.net[static_cast<std::size_t>(k1)][3];
-    for (int k2 = k1; k2 < count; ++k2) {
-      const int i2 = k2 / (m + 1), j2 = k2 % (m + 1);
-      const double f = (k2 == k1 ? 1.0 : 2.0) * cu[i] * cu[i2] * inverseU[i + i2] * cv[j] * cv[j2] * inverseV[j + j2];
-      const std::size_t kl = static_cast<std::size_t>(i + i2) * cols + static_cast<std::size_t>(j + j2);
-      A[kl] += f * y[k1].dot(y[k2]);
-      W[kl] += f * w1 * patch.net[static_cast<std::size_t>(k2)][3];
+  // Scaled copies on the stack up to a bicubic net (the common case, asked per node of every query).
+  constexpr int kLocal = 16;
+  std::array<Eigen::Vector3d, kLocal> yLocal;
+  std::array<double, kLocal> wLocal;
+  std::vector<Eigen::Vector3d> yHeap(count > kLocal ? static_cast<std::size_t>(count) : 0);
+  std::vector<double> wHeap(yHeap.size());
+  Eigen::Vector3d* ys = yHeap.empty() ? yLocal.data() : yHeap.data();
+  double* ws = wHeap.empty() ? wLocal.data() : wHeap.data();
+  for (int i = 0; i <= n; ++i)
+    for (int j = 0; j <= m; ++j) {
+      const int k = i * (m + 1) + j;
+      const Eigen::Vector4d& P = patch.net[static_cast<std::size_t>(k)];
+      const double scale = binomial(n, i) * binomial(m, j);
+      y[k] = P.head<3>() - q * P[3];
+      ys[k] = scale * y[k];
+      ws[k] = scale * P[3];
     }
+  switch (n == m ? n : -1) {
+    case 1: detail::addScaledSquares<1, 1>(n, m, ys, ws, A, W); break;
+    case 2: detail::addScaledSquares<2, 2>(n, m, ys, ws, A, W); break;
+    case 3: detail::addScaledSquares<3, 3>(n, m, ys, ws, A, W); break;
+    default: detail::addScaledSquares<-1, -1>(n, m, ys, ws, A, W); break;
   }
+  for (int k = 0; k <= 2 * n; ++k)
+    for (int l = 0; l <= 2 * m; ++l) {
+      const auto at = static_cast<std::size_t>(k * cols + l);
+      const double unscale = 1 / (binomial(2 * n, k) * binomial(2 * m, l));
+      A[at] *= unscale;
+      W[at] *= unscale;
+    }
 }
 
 /// bernsteinDistanceBound's allowance for rounding, on a patch of `terms` control points within `magnitude` of

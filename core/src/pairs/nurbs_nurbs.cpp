@@ -76,11 +76,11 @@ class PairSearch {
         stopWhenApart_(stopWhenApart), budget_(budget) {}
 
   Outcome run() {
-    seed();
+    const bool interiorEnd = seed();
     updateSeparators();
     for (const auto& ra : a_.forest().roots)
       for (const auto& rb : b_.forest().roots) visit(ra.get(), rb.get());
-    seedFromLowestPairs();
+    seedFromLowestPairs(interiorEnd);
     int popped = 0;
     while (!open_.empty()) {
       if (inside_) return Outcome::Crossing;
@@ -343,13 +343,13 @@ class PairSearch {
 
   /// A near-optimal upper bound before the search descends: Newton from the root pairs with the lowest bounds,
   /// started where their control hulls come closest.
-  void seedFromLowestPairs() {
+  /// interiorEnd: Newton already ended inside two patches (no root-pair seeds then).
+  void seedFromLowestPairs(bool interiorEnd) {
     std::vector<OpenPair> lowest;
     for (int k = 0; k < kSeedPairs && !open_.empty(); ++k) {
       lowest.push_back(open_.top());
       open_.pop();
     }
-    bool interiorEnd = false;
     for (const OpenPair& p : lowest) {
       open_.push(p);
       // An end inside both patches is a stationary pair, most likely the minimum's: the other seeds would end
@@ -358,7 +358,7 @@ class PairSearch {
       const Eigen::Vector2d sa = nearestControlParameters(*p.a, p.wA);
       const Eigen::Vector2d sb = nearestControlParameters(*p.b, R_BA_ * (p.wB - X_AB_.translation()));
       const Eigen::Vector4d end = polish(p.a->patch, p.b->patch, Eigen::Vector4d(sa[0], sa[1], sb[0], sb[1]));
-      interiorEnd = (end.array() > 0).all() && (end.array() < 1).all();
+      interiorEnd = isInterior(end);
     }
   }
 
@@ -400,7 +400,8 @@ class PairSearch {
   /// The nearest pair of patch corners, then Newton from it: a realised upper bound before the search starts.
   /// Over the distinct corners (a torus's 64 are 16 points); of equally near pairs, the first in (patch of A,
   /// patch of B, corner of A, corner of B) order.
-  void seed() {
+  /// Newton from the nearest pair of patch corners; returns whether it ended inside both patches.
+  bool seed() {
     static const double kCornerS[4] = {0, 1, 0, 1}, kCornerT[4] = {0, 0, 1, 1};
     const auto& cornersA = a_.forest().distinctCorners;
     const auto& cornersOfB = b_.forest().distinctCorners;
@@ -419,11 +420,14 @@ class PairSearch {
           first = key;
         }
       }
-    if (!(nearest < std::numeric_limits<double>::infinity())) return;
+    if (!(nearest < std::numeric_limits<double>::infinity())) return false;
     const int pa = a_.forest().roots[static_cast<std::size_t>(first[0])]->patch;
     const int pb = b_.forest().roots[static_cast<std::size_t>(first[1])]->patch;
-    polish(pa, pb, Eigen::Vector4d(kCornerS[first[2]], kCornerT[first[2]], kCornerS[first[3]], kCornerT[first[3]]));
+    return isInterior(
+        polish(pa, pb, Eigen::Vector4d(kCornerS[first[2]], kCornerT[first[2]], kCornerS[first[3]], kCornerT[first[3]])));
   }
+
+  static bool isInterior(const Eigen::Vector4d& x) { return (x.array() > 0).all() && (x.array() < 1).all(); }
 
   static nurbs::Cone rotated(nurbs::Cone c, const Eigen::Matrix3d& R) {
     c.axis = R * c.axis;
