@@ -25,8 +25,12 @@ struct Piece {
   bool operator<(const Piece& o) const { return upper < o.upper; }
 };
 
-/// Halves the coefficients c (degree (p, q), u-major) at the middle of `direction` by de Casteljau.
-void halve(const double* c, int p, int q, int direction, double* left, double* right) {
+/// Halves the coefficients c (degree (p, q), u-major) at the middle of `direction` by de Casteljau. P, Q: p and q
+/// where known at compile time (the loops unrolled), else -1.
+template <int P, int Q>
+void halveOf(const double* c, int p, int q, int direction, double* left, double* right) {
+  if constexpr (P >= 0) p = P;
+  if constexpr (Q >= 0) q = Q;
   const int n = direction == 0 ? p : q;
   const int lines = direction == 0 ? q + 1 : p + 1;
   const int along = direction == 0 ? q + 1 : 1, across = direction == 0 ? 1 : q + 1;
@@ -45,7 +49,10 @@ void halve(const double* c, int p, int q, int direction, double* left, double* r
 
 /// How much the coefficient ratios r (u-major) curve along u and along v: the largest second difference times
 /// the degree squared, the bound's slack from that direction.
-std::pair<double, double> curvature(const double* r, int p, int q) {
+template <int P, int Q>
+std::pair<double, double> curvatureOf(const double* r, int p, int q) {
+  if constexpr (P >= 0) p = P;
+  if constexpr (Q >= 0) q = Q;
   const auto at = [&](int i, int j) { return r[i * (q + 1) + j]; };
   double alongU = 0, alongV = 0;
   for (int i = 0; i <= p; ++i)
@@ -54,6 +61,23 @@ std::pair<double, double> curvature(const double* r, int p, int q) {
       if (j + 2 <= q) alongV = std::max(alongV, std::abs(at(i, j + 2) - 2 * at(i, j + 1) + at(i, j)));
     }
   return {alongU * p * p, alongV * q * q};
+}
+
+// The distance forms of biquadratic and bicubic patches (degrees 4 and 6) are nearly all that is subdivided.
+void halve(const double* c, int p, int q, int direction, double* left, double* right) {
+  switch (p == q ? p : -1) {
+    case 4: return halveOf<4, 4>(c, p, q, direction, left, right);
+    case 6: return halveOf<6, 6>(c, p, q, direction, left, right);
+    default: return halveOf<-1, -1>(c, p, q, direction, left, right);
+  }
+}
+
+std::pair<double, double> curvature(const double* r, int p, int q) {
+  switch (p == q ? p : -1) {
+    case 4: return curvatureOf<4, 4>(r, p, q);
+    case 6: return curvatureOf<6, 6>(r, p, q);
+    default: return curvatureOf<-1, -1>(r, p, q);
+  }
 }
 
 /// The coefficient ratios a / w into r.
@@ -86,20 +110,24 @@ RatioBound subdividedRatioBound(int p, int q, const double* a, const double* w, 
   if (cornerHigh > refine.enough || std::min(alongU, alongV) > kAnisotropic * std::max(alongU, alongV))
     return {*std::max_element(ratios.begin(), ratios.end()) + refine.allowance, cornerHigh, 0};
   const int budget = std::max(0, refine.budget);
+  // A slot holds a piece's a, w and ratios (the ratios kept for the piece's split: no second division).
+  const auto stride = static_cast<std::size_t>(3 * terms);
   std::pmr::vector<double> pool(&memory);
-  pool.reserve(static_cast<std::size_t>(2 * terms * 24));
+  pool.reserve(stride * 20);
   pool.insert(pool.end(), a, a + terms);
   pool.insert(pool.end(), w, w + terms);
+  pool.resize(stride);
   int slots = 1;
   double reached = -std::numeric_limits<double>::infinity();
   // A piece's bound: its largest ratio, its corners (exact values of g) noted; rounding of the halvings
   // (each level moves a coefficient by at most (p + q)·ε of the largest) on top of the given allowance.
   const auto bound = [&](int slot, int depth) {
-    const double* pa = pool.data() + static_cast<std::size_t>(2 * terms * slot);
+    double* pa = pool.data() + stride * static_cast<std::size_t>(slot);
     const double* pw = pa + terms;
-    double upper = -std::numeric_limits<double>::infinity();
-    for (int k = 0; k < terms; ++k) upper = std::max(upper, pa[k] / pw[k]);
-    for (int k : {0, q, terms - 1 - q, terms - 1}) reached = std::max(reached, pa[k] / pw[k]);
+    double* pr = pa + 2 * terms;
+    ratiosOf(pa, pw, terms, pr);
+    const double upper = *std::max_element(pr, pr + terms);
+    for (int k : {0, q, terms - 1 - q, terms - 1}) reached = std::max(reached, pr[k]);
     const double halving = 2 * depth * (p + q) * kEps * (maxA + std::abs(upper) * maxW) / minW;
     return Piece{upper + refine.allowance + halving, slot, depth};
   };
@@ -116,13 +144,12 @@ RatioBound subdividedRatioBound(int p, int q, const double* a, const double* w, 
       return {top.upper, reached, splits};
     open.pop();
     ++splits;
-    pool.resize(static_cast<std::size_t>(2 * terms * (slots + 1)));
-    double* pa = pool.data() + static_cast<std::size_t>(2 * terms * top.slot);
+    pool.resize(stride * static_cast<std::size_t>(slots + 1));
+    double* pa = pool.data() + stride * static_cast<std::size_t>(top.slot);
     double* pw = pa + terms;
-    ratiosOf(pa, pw, terms, ratios.data());
-    const auto [curvedU, curvedV] = curvature(ratios.data(), p, q);
+    const auto [curvedU, curvedV] = curvature(pa + 2 * terms, p, q);
     const int direction = curvedU > curvedV ? 0 : 1;
-    double* ra = pool.data() + static_cast<std::size_t>(2 * terms * slots);
+    double* ra = pool.data() + stride * static_cast<std::size_t>(slots);
     double* rw = ra + terms;
     halve(pa, p, q, direction, left.data(), ra);
     halve(pw, p, q, direction, left.data() + terms, rw);
