@@ -25,26 +25,44 @@ struct Piece {
   bool operator<(const Piece& o) const { return upper < o.upper; }
 };
 
-/// Halves the coefficients c (degree (p, q), u-major) at the middle of `direction` by de Casteljau. P, Q: p and q
-/// where known at compile time (the loops unrolled), else -1.
-template <int P, int Q>
-void halveOf(const double* c, int p, int q, int direction, double* left, double* right) {
-  if constexpr (P >= 0) p = P;
-  if constexpr (Q >= 0) q = Q;
+/// Halves one line of n + 1 coefficients (`stride` apart) at its middle by de Casteljau. N: n where known at
+/// compile time (the triangle then stays in registers: the halvings are a third of a circle of minima's time).
+template <int N>
+void halveLine(const double* c, int n, int stride, double* left, double* right) {
+  if constexpr (N >= 0) n = N;
+  double row[(N >= 0 ? N : kMaxNurbsDegree) + 1] = {};
+  for (int k = 0; k <= n; ++k) row[k] = c[k * stride];
+  left[0] = row[0];
+  right[n * stride] = row[n];
+  for (int r = 1; r <= n; ++r) {
+    for (int k = 0; k + r <= n; ++k) row[k] = 0.5 * (row[k] + row[k + 1]);
+    left[r * stride] = row[0];
+    right[(n - r) * stride] = row[n - r];
+  }
+}
+
+/// Degree 4 (a biquadratic patch's distance form) written out: the loop's row, kept on the stack and read back
+/// two lanes at a time, stalled on every store it had just made (a third of a circle of minima's time). The same
+/// operations in the same order, so the same bits.
+template <>
+void halveLine<4>(const double* c, int, int stride, double* left, double* right) {
+  const double b0 = c[0], b1 = c[stride], b2 = c[2 * stride], b3 = c[3 * stride], b4 = c[4 * stride];
+  const double c0 = 0.5 * (b0 + b1), c1 = 0.5 * (b1 + b2), c2 = 0.5 * (b2 + b3), c3 = 0.5 * (b3 + b4);
+  const double d0 = 0.5 * (c0 + c1), d1 = 0.5 * (c1 + c2), d2 = 0.5 * (c2 + c3);
+  const double e0 = 0.5 * (d0 + d1), e1 = 0.5 * (d1 + d2);
+  const double f0 = 0.5 * (e0 + e1);
+  left[0] = b0, left[stride] = c0, left[2 * stride] = d0, left[3 * stride] = e0, left[4 * stride] = f0;
+  right[0] = f0, right[stride] = e1, right[2 * stride] = d2, right[3 * stride] = c3, right[4 * stride] = b4;
+}
+
+/// Halves the coefficients c (degree (p, q), u-major) at the middle of `direction`, line by line.
+template <int N>
+void halveLines(const double* c, int p, int q, int direction, double* left, double* right) {
   const int n = direction == 0 ? p : q;
   const int lines = direction == 0 ? q + 1 : p + 1;
   const int along = direction == 0 ? q + 1 : 1, across = direction == 0 ? 1 : q + 1;
-  double row[kMaxNurbsDegree + 1];
-  for (int l = 0; l < lines; ++l) {
-    for (int k = 0; k <= n; ++k) row[k] = c[l * across + k * along];
-    left[l * across] = row[0];
-    right[l * across + n * along] = row[n];
-    for (int r = 1; r <= n; ++r) {
-      for (int k = 0; k + r <= n; ++k) row[k] = 0.5 * (row[k] + row[k + 1]);
-      left[l * across + r * along] = row[0];
-      right[l * across + (n - r) * along] = row[n - r];
-    }
-  }
+  for (int l = 0; l < lines; ++l)
+    halveLine<N>(c + l * across, n, along, left + l * across, right + l * across);
 }
 
 /// How much the coefficient ratios r (u-major) curve along u and along v: the largest second difference times
@@ -65,10 +83,10 @@ std::pair<double, double> curvatureOf(const double* r, int p, int q) {
 
 // The distance forms of biquadratic and bicubic patches (degrees 4 and 6) are nearly all that is subdivided.
 void halve(const double* c, int p, int q, int direction, double* left, double* right) {
-  switch (p == q ? p : -1) {
-    case 4: return halveOf<4, 4>(c, p, q, direction, left, right);
-    case 6: return halveOf<6, 6>(c, p, q, direction, left, right);
-    default: return halveOf<-1, -1>(c, p, q, direction, left, right);
+  switch (direction == 0 ? p : q) {
+    case 4: return halveLines<4>(c, p, q, direction, left, right);
+    case 6: return halveLines<6>(c, p, q, direction, left, right);
+    default: return halveLines<-1>(c, p, q, direction, left, right);
   }
 }
 
