@@ -150,11 +150,13 @@ double SupportBall::gap(const PatchNode& na, const PatchNode& nb, double needed,
   double near = std::max((outer.ball.center - cOuter).norm() - outer.ball.radius, boxDistance(outer, cOuter));
   if (near - far >= needed) return near - far;
   // A certified extreme is no better than the surface's own corners: certify only when they leave room.
-  double cornerFar = 0, cornerNear = kInf;
-  for (int k = 0; k < 4; ++k) {
-    cornerFar = std::max(cornerFar, (inner.corners[static_cast<std::size_t>(k)] - cInner).norm());
-    cornerNear = std::min(cornerNear, (outer.corners[static_cast<std::size_t>(k)] - cOuter).norm());
+  double cornerFar = 0, cornerNear = kInf;  // squared first: one square root each
+  for (std::size_t k = 0; k < 4; ++k) {
+    cornerFar = std::max(cornerFar, (inner.corners[k] - cInner).squaredNorm());
+    cornerNear = std::min(cornerNear, (outer.corners[k] - cOuter).squaredNorm());
   }
+  cornerFar = std::sqrt(cornerFar);
+  cornerNear = std::sqrt(cornerNear);
   if (cornerNear - cornerFar < needed) return near - far;
   // The side that limits first: no near bound can settle the pair while the far one leaves no room.
   const Eigen::Vector3d& pInner = innerIsB_ ? contactB_ : contactA_;
