@@ -63,10 +63,12 @@ enum class Outcome { Proved, Touching, Crossing, Exhausted };
 // control-point hulls — cannot beat the best realised distance, or (b) it cannot hold an extremal pair: the
 // directions from A's ball to B's ball must be parallel to both normal cones (or, on a patch edge, orthogonal
 // to the edge's tangent cone; nodes holding a patch corner always qualify). Newton on the extremal-distance
-// equations (from the lowest root pairs first, then from flat pairs away from earlier ends) realises the minimum
-// early; around each of its ends a convexity certificate (pair_convexity.h) proves a parameter box whose every
-// pair is settled by the distance there, so the search stops a few levels below it instead of at node sizes of
-// ~√tolerance, where the hull bounds would meet the tolerance.
+// equations (from the nearest patch corners, then the lowest root pairs until one run ends inside both patches,
+// then from flat pairs away from earlier ends) realises the minimum early; the separators fitted at the best
+// pair (support plane, ball, tube) settle pairs by one bound each; around each Newton end a convexity
+// certificate (pair_convexity.h) proves a parameter box whose every pair is settled by the distance there, so
+// the search stops a few levels below it instead of at node sizes of ~√tolerance, where the hull bounds would
+// meet the tolerance.
 class PairSearch {
  public:
   /// With stopWhenApart the search ends as soon as its lower bound is positive (an overlap verdict needs no more).
