@@ -7,6 +7,7 @@
 // Internal.
 #pragma once
 
+#include "nurbs/bernstein_product.h"
 #include "nurbs/binomial.h"
 #include "unidist/nurbs.h"
 
@@ -23,31 +24,6 @@ struct BernsteinScratch {
   std::vector<double> A, W;
   std::vector<Eigen::Vector3d> y;
 };
-
-namespace detail {
-
-/// The products' sums over all pairs of points, on binomial-scaled points (ỹ_ij = C(n,i)·C(m,j)·y_ij, likewise
-/// w̃): one multiply-add per term and coordinate, no weights. N, M: n and m where known at compile time (the loops
-/// unrolled), else -1.
-template <int N, int M, class Coeffs>
-inline void addScaledSquares(int n, int m, const Eigen::Vector3d* y, const double* w, Coeffs& A, Coeffs& W) {
-  if constexpr (N >= 0) n = N;
-  if constexpr (M >= 0) m = M;
-  const int cols = 2 * m + 1;
-  for (int i = 0; i <= n; ++i)
-    for (int j = 0; j <= m; ++j) {
-      const Eigen::Vector3d& yij = y[i * (m + 1) + j];
-      const double wij = w[i * (m + 1) + j];
-      for (int k = 0; k <= n; ++k)
-        for (int l = 0; l <= m; ++l) {
-          const auto at = static_cast<std::size_t>((i + k) * cols + j + l);
-          A[at] += yij.dot(y[k * (m + 1) + l]);
-          W[at] += wij * w[k * (m + 1) + l];
-        }
-    }
-}
-
-}  // namespace detail
 
 /// |X − q·W|² (into A) and W² (into W) in Bernstein form of degree (2n, 2m), coefficient (k, l) at k·(2m + 1) + l:
 /// products of the patch's degree-(n, m) forms, each coefficient a mean of products of control points (the
@@ -79,19 +55,10 @@ void squaredDistanceForm(const RationalBezierPatch& patch, const Eigen::Vector3d
       ys[k] = scale * y[k];
       ws[k] = scale * P[3];
     }
-  switch (n == m ? n : -1) {
-    case 1: detail::addScaledSquares<1, 1>(n, m, ys, ws, A, W); break;
-    case 2: detail::addScaledSquares<2, 2>(n, m, ys, ws, A, W); break;
-    case 3: detail::addScaledSquares<3, 3>(n, m, ys, ws, A, W); break;
-    default: detail::addScaledSquares<-1, -1>(n, m, ys, ws, A, W); break;
-  }
-  for (int k = 0; k <= 2 * n; ++k)
-    for (int l = 0; l <= 2 * m; ++l) {
-      const auto at = static_cast<std::size_t>(k * cols + l);
-      const double unscale = 1 / (binomial(2 * n, k) * binomial(2 * m, l));
-      A[at] *= unscale;
-      W[at] *= unscale;
-    }
+  addScaledProduct(n, m, ys, ys, 1.0, &A[0]);
+  addScaledProduct(n, m, ws, ws, 1.0, &W[0]);
+  unscaleByBinomials(2 * n, 2 * m, &A[0]);
+  unscaleByBinomials(2 * n, 2 * m, &W[0]);
 }
 
 /// bernsteinDistanceBound's allowance for rounding, on a patch of `terms` control points within `magnitude` of

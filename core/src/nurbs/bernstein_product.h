@@ -1,6 +1,8 @@
 // The product of two polynomials in tensor-product Bernstein form, coefficient pairs combined by a given
 // function (a dot product, a scaling): shared by the gradient and curvature forms of the point query's proofs
-// (gradient_sign.h, point_convexity.h). Internal.
+// (gradient_sign.h, point_convexity.h). And the same-degree product on binomial-scaled coefficients, one
+// multiply-add a term, for the forms made per node of every query (the squared distance, the tube's quartic).
+// Internal.
 #pragma once
 
 #include "nurbs/binomial.h"
@@ -39,6 +41,53 @@ inline void product(int n, int m, const std::vector<X>& x, int a, int b, const s
 
 /// The usual ways to combine coefficient pairs.
 inline double dotOf(const Eigen::Vector3d& x, const Eigen::Vector3d& y) { return x.dot(y); }
+inline double timesOf(const Eigen::Vector3d& x, const Eigen::Vector3d& y) { return x.dot(y); }
 inline Eigen::Vector3d scaledBy(double w, const Eigen::Vector3d& y) { return w * y; }
+
+inline double timesOf(double x, double y) { return x * y; }
+
+namespace detail {
+
+/// addScaledProduct with n and m known at compile time where N, M >= 0 (the loops unrolled).
+template <int N, int M, class T>
+inline void addScaledProductOf(int n, int m, const T* x, const T* y, double factor, double* out) {
+  if constexpr (N >= 0) n = N;
+  if constexpr (M >= 0) m = M;
+  const int cols = 2 * m + 1;
+  for (int i = 0; i <= n; ++i)
+    for (int j = 0; j <= m; ++j) {
+      const T xij = factor * x[i * (m + 1) + j];
+      for (int k = 0; k <= n; ++k) {
+        double* row = out + (i + k) * cols + j;
+        const T* yk = y + k * (m + 1);
+        for (int l = 0; l <= m; ++l) row[l] += timesOf(xij, yk[l]);
+      }
+    }
+}
+
+}  // namespace detail
+
+/// The product of two degree-(n, m) forms (T: double, or Eigen::Vector3d multiplied by the dot product) held
+/// scaled by their binomials (x̃_ij = C(n,i)·C(m,j)·x_ij), times `factor`, added to `out`: degree (2n, 2m), scaled
+/// the same way. With the binomials folded in, every term is one product; unscaleByBinomials turns the sums into
+/// plain coefficients (each then a mean of products, as `product` computes them). Unrolled for the forms of
+/// patches of degree 1 to 3 and their squares.
+template <class T>
+inline void addScaledProduct(int n, int m, const T* x, const T* y, double factor, double* out) {
+  switch (n == m ? n : -1) {
+    case 1: return detail::addScaledProductOf<1, 1>(n, m, x, y, factor, out);
+    case 2: return detail::addScaledProductOf<2, 2>(n, m, x, y, factor, out);
+    case 3: return detail::addScaledProductOf<3, 3>(n, m, x, y, factor, out);
+    case 4: return detail::addScaledProductOf<4, 4>(n, m, x, y, factor, out);
+    case 6: return detail::addScaledProductOf<6, 6>(n, m, x, y, factor, out);
+    default: return detail::addScaledProductOf<-1, -1>(n, m, x, y, factor, out);
+  }
+}
+
+/// Coefficients of degree (n, m) held scaled by their binomials, divided back: c_ij / (C(n,i)·C(m,j)).
+inline void unscaleByBinomials(int n, int m, double* c) {
+  for (int i = 0; i <= n; ++i)
+    for (int j = 0; j <= m; ++j) c[i * (m + 1) + j] /= binomial(n, i) * binomial(m, j);
+}
 
 }  // namespace unidist::nurbs

@@ -114,43 +114,43 @@ RatioBound subdividedRatioBound(int p, int q, const double* a, const double* w, 
     minW = std::min(minW, w[k]);
   }
   // The pieces' forms, the heap and the scratch rows on the stack while they fit (the heap beyond): a certificate
-  // is asked of several nodes per query and usually ends within a dozen splits.
+  // is asked of several nodes per query and usually ends within a dozen splits. A slot holds a piece's a, w and
+  // ratios (the ratios kept for the piece's split: no second division).
   std::array<std::byte, 16384> stack;
   std::pmr::monotonic_buffer_resource memory(stack.data(), stack.size());
-  std::pmr::vector<double> ratios(static_cast<std::size_t>(terms), &memory);
-  ratiosOf(a, w, terms, ratios.data());
-  // Not worth splitting when a corner of the square is above `enough` already (g there is its coefficient ratio),
-  // or when the ratios curve both ways about as much: halving across one direction at a time then does what the
-  // patch tree's quadrants do, at least as many pieces for the same bound.
-  double cornerHigh = -std::numeric_limits<double>::infinity();
-  for (int k : {0, q, terms - 1 - q, terms - 1}) cornerHigh = std::max(cornerHigh, ratios[static_cast<std::size_t>(k)]);
-  const auto [alongU, alongV] = curvature(ratios.data(), p, q);
-  if (cornerHigh > refine.enough || std::min(alongU, alongV) > kAnisotropic * std::max(alongU, alongV))
-    return {*std::max_element(ratios.begin(), ratios.end()) + refine.allowance, cornerHigh, 0};
-  const int budget = std::max(0, refine.budget);
-  // A slot holds a piece's a, w and ratios (the ratios kept for the piece's split: no second division).
   const auto stride = static_cast<std::size_t>(3 * terms);
   std::pmr::vector<double> pool(&memory);
   pool.reserve(stride * 20);
   pool.insert(pool.end(), a, a + terms);
   pool.insert(pool.end(), w, w + terms);
   pool.resize(stride);
+  const auto ratiosAt = [&](int slot) {
+    double* pa = pool.data() + stride * static_cast<std::size_t>(slot);
+    ratiosOf(pa, pa + terms, terms, pa + 2 * terms);
+    return pa + 2 * terms;
+  };
+  const double* rootRatios = ratiosAt(0);
+  // Not worth splitting when a corner of the square is above `enough` already (g there is its coefficient ratio),
+  // or when the ratios curve both ways about as much: halving across one direction at a time then does what the
+  // patch tree's quadrants do, at least as many pieces for the same bound.
+  double cornerHigh = -std::numeric_limits<double>::infinity();
+  for (int k : {0, q, terms - 1 - q, terms - 1}) cornerHigh = std::max(cornerHigh, rootRatios[k]);
+  const auto [alongU, alongV] = curvature(rootRatios, p, q);
+  if (cornerHigh > refine.enough || std::min(alongU, alongV) > kAnisotropic * std::max(alongU, alongV))
+    return {*std::max_element(rootRatios, rootRatios + terms) + refine.allowance, cornerHigh, 0};
+  const int budget = std::max(0, refine.budget);
   int slots = 1;
   double reached = -std::numeric_limits<double>::infinity();
-  // A piece's bound: its largest ratio, its corners (exact values of g) noted; rounding of the halvings
+  // A piece's bound from its ratios: the largest, its corners (exact values of g) noted; rounding of the halvings
   // (each level moves a coefficient by at most (p + q)·ε of the largest) on top of the given allowance.
-  const auto bound = [&](int slot, int depth) {
-    double* pa = pool.data() + stride * static_cast<std::size_t>(slot);
-    const double* pw = pa + terms;
-    double* pr = pa + 2 * terms;
-    ratiosOf(pa, pw, terms, pr);
-    const double upper = *std::max_element(pr, pr + terms);
-    for (int k : {0, q, terms - 1 - q, terms - 1}) reached = std::max(reached, pr[k]);
+  const auto bound = [&](int slot, int depth, const double* ratios) {
+    const double upper = *std::max_element(ratios, ratios + terms);
+    for (int k : {0, q, terms - 1 - q, terms - 1}) reached = std::max(reached, ratios[k]);
     const double halving = 2 * depth * (p + q) * kEps * (maxA + std::abs(upper) * maxW) / minW;
     return Piece{upper + refine.allowance + halving, slot, depth};
   };
   std::priority_queue<Piece, std::pmr::vector<Piece>> open{std::less<Piece>(), std::pmr::vector<Piece>(&memory)};
-  open.push(bound(0, 0));
+  open.push(bound(0, 0, rootRatios));
   int splits = 0;
   std::pmr::vector<double> left(static_cast<std::size_t>(2 * terms), &memory);
   while (true) {
@@ -172,8 +172,9 @@ RatioBound subdividedRatioBound(int p, int q, const double* a, const double* w, 
     halve(pa, p, q, direction, left.data(), ra);
     halve(pw, p, q, direction, left.data() + terms, rw);
     std::copy(left.begin(), left.end(), pa);  // the left half reuses its parent's slot
-    open.push(bound(top.slot, top.depth + 1));
-    open.push(bound(slots++, top.depth + 1));
+    open.push(bound(top.slot, top.depth + 1, ratiosAt(top.slot)));
+    open.push(bound(slots, top.depth + 1, ratiosAt(slots)));
+    ++slots;
   }
 }
 

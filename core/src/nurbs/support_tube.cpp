@@ -1,5 +1,6 @@
 #include "nurbs/support_tube.h"
 
+#include "nurbs/bernstein_product.h"
 #include "nurbs/binomial.h"
 #include "nurbs/support_bound.h"
 
@@ -68,36 +69,6 @@ bool outsideByHull(const std::vector<Eigen::Vector3d>& points, const Eigen::Vect
     farthest = std::max(farthest, (r - z * axis).squaredNorm());
   }
   return low >= s || high <= -s || std::sqrt(farthest) <= R - s;
-}
-
-/// The Bernstein product of two degree-(n, m) forms held scaled by their binomials (x̃_ij = C(n,i)·C(m,j)·x_ij),
-/// times `factor`, added to `out` (degree (2n, 2m), scaled the same way: C(2n,I)·C(2m,J) times the coefficient).
-/// N, M: n and m where they are known at compile time (the loops unrolled), else -1.
-template <int N, int M>
-void addScaledProductOf(int n, int m, const double* x, const double* y, double factor, double* out) {
-  if constexpr (N >= 0) n = N;
-  if constexpr (M >= 0) m = M;
-  const int cols = 2 * m + 1;
-  for (int i = 0; i <= n; ++i)
-    for (int j = 0; j <= m; ++j) {
-      const double xij = factor * x[i * (m + 1) + j];
-      for (int k = 0; k <= n; ++k) {
-        double* row = out + (i + k) * cols + j;
-        const double* yk = y + k * (m + 1);
-        for (int l = 0; l <= m; ++l) row[l] += xij * yk[l];
-      }
-    }
-}
-
-void addScaledProduct(int n, int m, const double* x, const double* y, double factor, double* out) {
-  // The degrees of biquadratic and bicubic patches' forms: the quartics are most of a linked pair's search.
-  switch (n == m ? n : -1) {
-    case 2: return addScaledProductOf<2, 2>(n, m, x, y, factor, out);
-    case 3: return addScaledProductOf<3, 3>(n, m, x, y, factor, out);
-    case 4: return addScaledProductOf<4, 4>(n, m, x, y, factor, out);
-    case 6: return addScaledProductOf<6, 6>(n, m, x, y, factor, out);
-    default: return addScaledProductOf<-1, -1>(n, m, x, y, factor, out);
-  }
 }
 
 }  // namespace
@@ -190,16 +161,15 @@ std::vector<double>& SupportTube::quarticOf(const RationalBezierPatch& net, cons
   Scratch& m = scratch_;
   // Every form below is held scaled by its binomials (x̃_ij = C(n,i)·C(m,j)·x_ij): a Bernstein product is then
   // a plain sum of products, one multiply-add per term, unscaled once at the end.
-  for (auto* v : {&m.x, &m.y, &m.z, &m.axial, &m.w}) v->resize(count);
+  m.y.resize(count);
+  for (auto* v : {&m.axial, &m.w}) v->resize(count);
   double yMax = 0, wMax = 0, reach = 0;
   for (int i = 0; i <= p; ++i)
     for (int j = 0; j <= q; ++j) {
       const auto k = static_cast<std::size_t>(i * (q + 1) + j);
       const double w = net.net[k][3], scale = binomial(p, i) * binomial(q, j);
       const Eigen::Vector3d y = net.net[k].head<3>() - circle.centre * w;
-      m.x[k] = scale * y[0];
-      m.y[k] = scale * y[1];
-      m.z[k] = scale * y[2];
+      m.y[k] = scale * y;
       m.axial[k] = scale * circle.axis.dot(y);
       m.w[k] = scale * w;
       yMax = std::max(yMax, y.norm());
@@ -209,7 +179,7 @@ std::vector<double>& SupportTube::quarticOf(const RationalBezierPatch& net, cons
   // |y|², (axis·y)² and W², degree (2p, 2q).
   const std::size_t squares = static_cast<std::size_t>((2 * p + 1) * (2 * q + 1));
   for (auto* v : {&m.yy, &m.zz, &m.ww}) v->assign(squares, 0.0);
-  for (const auto* c : {&m.x, &m.y, &m.z}) addScaledProduct(p, q, c->data(), c->data(), 1.0, m.yy.data());
+  addScaledProduct(p, q, m.y.data(), m.y.data(), 1.0, m.yy.data());
   addScaledProduct(p, q, m.axial.data(), m.axial.data(), 1.0, m.zz.data());
   addScaledProduct(p, q, m.w.data(), m.w.data(), 1.0, m.ww.data());
   // The quartic u² − 4R²·ρ²·W², u = |y|² + (R² − s²)W², ρ² = |y|² − (axis·y)²: the squares' scaled coefficients
@@ -224,9 +194,7 @@ std::vector<double>& SupportTube::quarticOf(const RationalBezierPatch& net, cons
   quartic.assign(static_cast<std::size_t>((4 * p + 1) * (4 * q + 1)), 0.0);
   addScaledProduct(2 * p, 2 * q, m.u.data(), m.u.data(), 1.0, quartic.data());
   addScaledProduct(2 * p, 2 * q, m.rho2.data(), m.ww.data(), -fourR2, quartic.data());
-  for (int i = 0; i <= 4 * p; ++i)
-    for (int j = 0; j <= 4 * q; ++j)
-      quartic[static_cast<std::size_t>(i * (4 * q + 1) + j)] /= binomial(4 * p, i) * binomial(4 * q, j);
+  unscaleByBinomials(4 * p, 4 * q, quartic.data());
   // Rounding: each coefficient is a mean of products of means of products; counted per unit of the largest
   // terms, with y's own rounding (ε of |X| + |centre|·W) on top.
   const double uMax = yMax * yMax + std::abs(shift) * wMax * wMax;
@@ -248,7 +216,7 @@ bool SupportTube::proved(NodeMemo& memo, ProvedBoxes& boxes, const PatchNode& no
     if (!inside && outsideByHull(node.points, circle.centre, circle.axis, R_, s)) return 1.0;
     const RationalBezierPatch& net = node.net;
     const int p = net.degreeU, q = net.degreeV;
-    if (2 * std::max(p, q) > kMaxNurbsDegree) return 0.0;  // beyond the Bernstein products' fixed rows
+    if (2 * std::max(p, q) > kMaxNurbsDegree) return 0.0;  // its degree (4p, 4q) beyond the binomial table
     double allowance = 0;
     std::vector<double>& quartic = quarticOf(net, circle, s, allowance);
     const bool byCoefficients = std::all_of(quartic.begin(), quartic.end(),
@@ -257,7 +225,6 @@ bool SupportTube::proved(NodeMemo& memo, ProvedBoxes& boxes, const PatchNode& no
     // Next to the contact the quartic's least value on the outer side is a sliver of the tolerance, which the
     // coefficients reach only at ~1e-5 of a patch (a cross term's coefficients fall below its values). The
     // quartic is convex there: proved so, its extreme is exact to rounding.
-    if (4 * std::max(p, q) > kMaxNurbsDegree) return 0.0;
     double largest = 0;
     for (double& f : quartic) {
       if (!inside) f = -f;

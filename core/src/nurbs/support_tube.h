@@ -62,7 +62,8 @@ class SupportTube {
   Circle circleA_, circleB_;               // the circle in A's and in B's frame
   NodeMemo innerMemo_, outerMemo_;
   struct Scratch {  // the quartic's forms, kept between nodes (one search makes tens of them)
-    std::vector<double> x, y, z, axial, w, yy, zz, ww, u, rho2, quartic;
+    std::vector<Eigen::Vector3d> y;
+    std::vector<double> axial, w, yy, zz, ww, u, rho2, quartic;
   } scratch_;
   ProvedBoxes innerBoxes_, outerBoxes_;
 };

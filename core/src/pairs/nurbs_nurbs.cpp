@@ -138,9 +138,7 @@ class PairSearch {
   const Eigen::Vector3d& pointA() const { return best_.pA; }
   const Eigen::Vector3d& pointB() const { return best_.pB; }
   /// Does the best pair lie on a patch edge of either model (a Newton run clamped there)?
-  bool bestOnPatchEdge() const {
-    return (best_.x.array() <= 0).any() || (best_.x.array() >= 1).any();
-  }
+  bool bestOnPatchEdge() const { return !isInterior(best_.x); }
   /// A's outward unit normal at the best pair's point on A (A's frame).
   Eigen::Vector3d normalA() const { return a_.patchNormal(best_.patchA, best_.x[0], best_.x[1]); }
   int iterations() const { return iterations_; }
