@@ -96,6 +96,57 @@ TEST(SupportTube, ProvedGapsHoldAgainstSampling) {
   EXPECT_GT(checked, 50);
 }
 
+// A tube fitted at a higher best pair (an early Newton end), used, then narrowed to the tube fitted at the
+// minimum: it settles exactly the pairs the fresh tube settles (its proofs for the wider tube hold for the
+// narrower one), each by a gap that holds against sampling. It refuses a wider tube and another pose's.
+TEST(SupportTube, NarrowedTubeSettlesWhatAFreshOneDoes) {
+  const NurbsModel torus({nurbs_fixtures::torusSurface(1, 0.25)}, true);
+  const Eigen::Isometry3d& X = linked().X_WB;
+  const double tolerance = 1e-9;
+  std::optional<SupportTube> early = fitTo(torus, X, linked().truth + 2e-3, tolerance);
+  std::optional<SupportTube> fresh = fitTo(torus, X, linked().truth - 0.5 * tolerance, tolerance);
+  ASSERT_TRUE(early && fresh);
+  std::vector<std::unique_ptr<PatchNode>> arena;
+  std::vector<const PatchNode*> nodes;
+  for (const auto& root : torus.forest().roots) {
+    nodes.push_back(root.get());
+    for (const PatchNode* c : torus.forest().children(*root, arena)) nodes.push_back(c);
+  }
+  for (const PatchNode* a : nodes)
+    for (const PatchNode* b : nodes) early->gap(*a, *b);  // proofs and refusals for the wider tube
+  SupportTube wider = *early;
+  EXPECT_FALSE(fresh->narrowTo(wider, 1e-12)) << "a wider tube is no narrowing";
+  Eigen::Isometry3d moved = X;
+  moved.translation().y() += 0.01;
+  std::optional<SupportTube> elsewhere = fitTo(torus, moved, linked().truth - 0.05, tolerance);
+  ASSERT_TRUE(elsewhere.has_value());
+  EXPECT_FALSE(wider.narrowTo(*elsewhere, 1e-12)) << "another pose's circle in B's frame";
+  ASSERT_TRUE(early->narrowTo(*fresh, 1e-12));
+  const auto samples = [&](const PatchNode& n, const Eigen::Isometry3d& X_) {
+    std::vector<Vec> points;
+    for (int a = 0; a <= 8; ++a)
+      for (int b = 0; b <= 8; ++b) points.push_back(X_ * n.net.derivatives(a / 8.0, b / 8.0).point);
+    return points;
+  };
+  int settledNarrowed = 0, settledFresh = 0, sampledPairs = 0;
+  for (std::size_t i = 0; i < nodes.size(); ++i)
+    for (std::size_t j = 0; j < nodes.size(); ++j) {
+      const double gap = early->gap(*nodes[i], *nodes[j]);
+      settledNarrowed += gap > 0;
+      settledFresh += fresh->gap(*nodes[i], *nodes[j]) > 0;
+      if (!(gap > 0) || (i * nodes.size() + j) % 37 != 0) continue;
+      ++sampledPairs;
+      double sampled = std::numeric_limits<double>::infinity();
+      for (const Vec& pa : samples(*nodes[i], Eigen::Isometry3d::Identity()))
+        for (const Vec& pb : samples(*nodes[j], X)) sampled = std::min(sampled, (pb - pa).norm());
+      EXPECT_GE(sampled, gap - 1e-12);
+      EXPECT_GE(gap, linked().truth - 0.5 * tolerance - 1e-12);
+    }
+  EXPECT_EQ(settledNarrowed, settledFresh);
+  EXPECT_GT(settledFresh, 0);
+  EXPECT_GT(sampledPairs, 10);
+}
+
 // Linked rings: the tube settles the pairs along the long stretch where they pass close; certified to the
 // tolerance at tiny and huge scales, and in offset poses around the benchmark's.
 TEST(SupportTube, LinkedRingsAreCertifiedAtEveryScale) {

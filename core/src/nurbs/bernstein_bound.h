@@ -55,8 +55,8 @@ void squaredDistanceForm(const RationalBezierPatch& patch, const Eigen::Vector3d
       ys[k] = scale * y[k];
       ws[k] = scale * P[3];
     }
-  addScaledProduct(n, m, ys, ys, 1.0, &A[0]);
-  addScaledProduct(n, m, ws, ws, 1.0, &W[0]);
+  addScaledSquare(n, m, ys, 1.0, &A[0]);
+  addScaledSquare(n, m, ws, 1.0, &W[0]);
   unscaleByBinomials(2 * n, 2 * m, &A[0]);
   unscaleByBinomials(2 * n, 2 * m, &W[0]);
 }

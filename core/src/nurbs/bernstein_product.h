@@ -9,6 +9,7 @@
 
 #include <Eigen/Core>
 
+#include <type_traits>
 #include <vector>
 
 namespace unidist::nurbs {
@@ -48,19 +49,49 @@ inline double timesOf(double x, double y) { return x * y; }
 
 namespace detail {
 
-/// addScaledProduct with n and m known at compile time where N, M >= 0 (the loops unrolled).
-template <int N, int M, class T>
-inline void addScaledProductOf(int n, int m, const T* x, const T* y, double factor, double* out) {
+/// Calls body(std::integral_constant<int, N>{}) with N = n where n == m is a degree the loops are unrolled for
+/// (the forms of patches of degree 1 to 3 and their squares), else with N = −1 (n and m at run time).
+template <class Body>
+inline void withUnrolledDegree(int n, int m, Body&& body) {
+  switch (n == m ? n : -1) {
+    case 1: return body(std::integral_constant<int, 1>{});
+    case 2: return body(std::integral_constant<int, 2>{});
+    case 3: return body(std::integral_constant<int, 3>{});
+    case 4: return body(std::integral_constant<int, 4>{});
+    case 6: return body(std::integral_constant<int, 6>{});
+    default: return body(std::integral_constant<int, -1>{});
+  }
+}
+
+/// addScaledProduct (y: the second form) or, with Square, addScaledSquare (y unused) with n and m known at compile
+/// time where N, M >= 0 (the loops unrolled). __restrict: the output never overlaps the inputs, so the compiler
+/// need not reload them after every store.
+template <int N, int M, bool Square, class T>
+inline void addScaledProductOf(int n, int m, const T* __restrict x, const T* __restrict y, double factor,
+                               double* __restrict out) {
   if constexpr (N >= 0) n = N;
   if constexpr (M >= 0) m = M;
   const int cols = 2 * m + 1;
   for (int i = 0; i <= n; ++i)
     for (int j = 0; j <= m; ++j) {
       const T xij = factor * x[i * (m + 1) + j];
-      for (int k = 0; k <= n; ++k) {
-        double* row = out + (i + k) * cols + j;
-        const T* yk = y + k * (m + 1);
-        for (int l = 0; l <= m; ++l) row[l] += timesOf(xij, yk[l]);
+      if constexpr (Square) {  // the term with itself once, every later term (in u-major order) twice
+        const T twice = 2 * xij;
+        double* row = out + 2 * i * cols + j;
+        const T* xi = x + i * (m + 1);
+        row[j] += timesOf(xij, xi[j]);
+        for (int l = j + 1; l <= m; ++l) row[l] += timesOf(twice, xi[l]);
+        for (int k = i + 1; k <= n; ++k) {
+          double* rowK = out + (i + k) * cols + j;
+          const T* xk = x + k * (m + 1);
+          for (int l = 0; l <= m; ++l) rowK[l] += timesOf(twice, xk[l]);
+        }
+      } else {
+        for (int k = 0; k <= n; ++k) {
+          double* row = out + (i + k) * cols + j;
+          const T* yk = y + k * (m + 1);
+          for (int l = 0; l <= m; ++l) row[l] += timesOf(xij, yk[l]);
+        }
       }
     }
 }
@@ -70,18 +101,18 @@ inline void addScaledProductOf(int n, int m, const T* x, const T* y, double fact
 /// The product of two degree-(n, m) forms (T: double, or Eigen::Vector3d multiplied by the dot product) held
 /// scaled by their binomials (x̃_ij = C(n,i)·C(m,j)·x_ij), times `factor`, added to `out`: degree (2n, 2m), scaled
 /// the same way. With the binomials folded in, every term is one product; unscaleByBinomials turns the sums into
-/// plain coefficients (each then a mean of products, as `product` computes them). Unrolled for the forms of
-/// patches of degree 1 to 3 and their squares.
+/// plain coefficients (each then a mean of products, as `product` computes them).
 template <class T>
 inline void addScaledProduct(int n, int m, const T* x, const T* y, double factor, double* out) {
-  switch (n == m ? n : -1) {
-    case 1: return detail::addScaledProductOf<1, 1>(n, m, x, y, factor, out);
-    case 2: return detail::addScaledProductOf<2, 2>(n, m, x, y, factor, out);
-    case 3: return detail::addScaledProductOf<3, 3>(n, m, x, y, factor, out);
-    case 4: return detail::addScaledProductOf<4, 4>(n, m, x, y, factor, out);
-    case 6: return detail::addScaledProductOf<6, 6>(n, m, x, y, factor, out);
-    default: return detail::addScaledProductOf<-1, -1>(n, m, x, y, factor, out);
-  }
+  detail::withUnrolledDegree(n, m, [&](auto N) { detail::addScaledProductOf<N(), N(), false>(n, m, x, y, factor, out); });
+}
+
+/// addScaledProduct(n, m, x, x, factor, out), each pair of distinct terms taken once and doubled (half the
+/// products).
+template <class T>
+inline void addScaledSquare(int n, int m, const T* x, double factor, double* out) {
+  detail::withUnrolledDegree(n, m,
+                             [&](auto N) { detail::addScaledProductOf<N(), N(), true>(n, m, x, x, factor, out); });
 }
 
 /// Coefficients of degree (n, m) held scaled by their binomials, divided back: c_ij / (C(n,i)·C(m,j)).

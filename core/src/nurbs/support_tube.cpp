@@ -146,6 +146,19 @@ std::optional<SupportTube> SupportTube::fit(const SeparatorContact& contact, dou
   return tube;
 }
 
+bool SupportTube::narrowTo(const SupportTube& fresh, double slack) {
+  const auto near = [&](const Circle& a, const Circle& b) {
+    return (a.centre - b.centre).norm() <= slack && R_ * (a.axis - b.axis).norm() <= slack;
+  };
+  const bool same = innerIsA_ == fresh.innerIsA_ && std::abs(R_ - fresh.R_) <= slack &&
+                    std::abs(inner_ - fresh.inner_) <= slack && near(circleA_, fresh.circleA_) &&
+                    near(circleB_, fresh.circleB_) && fresh.outer_ <= outer_;
+  if (!same) return false;
+  outer_ = fresh.outer_;
+  outerMemo_ = NodeMemo();
+  return true;
+}
+
 bool SupportTube::covered(const ProvedBoxes& boxes, const PatchNode& node) {
   const auto patch = static_cast<std::size_t>(node.patch);
   if (patch >= boxes.size()) return false;
@@ -179,9 +192,9 @@ std::vector<double>& SupportTube::quarticOf(const RationalBezierPatch& net, cons
   // |y|², (axis·y)² and W², degree (2p, 2q).
   const std::size_t squares = static_cast<std::size_t>((2 * p + 1) * (2 * q + 1));
   for (auto* v : {&m.yy, &m.zz, &m.ww}) v->assign(squares, 0.0);
-  addScaledProduct(p, q, m.y.data(), m.y.data(), 1.0, m.yy.data());
-  addScaledProduct(p, q, m.axial.data(), m.axial.data(), 1.0, m.zz.data());
-  addScaledProduct(p, q, m.w.data(), m.w.data(), 1.0, m.ww.data());
+  addScaledSquare(p, q, m.y.data(), 1.0, m.yy.data());
+  addScaledSquare(p, q, m.axial.data(), 1.0, m.zz.data());
+  addScaledSquare(p, q, m.w.data(), 1.0, m.ww.data());
   // The quartic u² − 4R²·ρ²·W², u = |y|² + (R² − s²)W², ρ² = |y|² − (axis·y)²: the squares' scaled coefficients
   // are already those of degree (2p, 2q), as the products need.
   const double shift = R_ * R_ - s * s, fourR2 = 4 * R_ * R_;
@@ -192,7 +205,7 @@ std::vector<double>& SupportTube::quarticOf(const RationalBezierPatch& net, cons
   }
   std::vector<double>& quartic = m.quartic;
   quartic.assign(static_cast<std::size_t>((4 * p + 1) * (4 * q + 1)), 0.0);
-  addScaledProduct(2 * p, 2 * q, m.u.data(), m.u.data(), 1.0, quartic.data());
+  addScaledSquare(2 * p, 2 * q, m.u.data(), 1.0, quartic.data());
   addScaledProduct(2 * p, 2 * q, m.rho2.data(), m.ww.data(), -fourR2, quartic.data());
   unscaleByBinomials(4 * p, 4 * q, quartic.data());
   // Rounding: each coefficient is a mean of products of means of products; counted per unit of the largest

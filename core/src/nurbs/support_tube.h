@@ -26,6 +26,12 @@ class SupportTube {
   /// curving toward the other.
   static std::optional<SupportTube> fit(const SeparatorContact& contact, double needed, double tolerance);
 
+  /// Takes a fresh fit's outer radius, when it is about this tube (centre, core radius, axis and inner radius within
+  /// `slack`) and no wider: every proof made stays valid (outside a tube is outside a narrower one), the outer
+  /// side's refusals are forgotten. A refit at a lower best pair on the same ring (the first Newton ends are
+  /// rarely the minimum) then spares all the forms made. False, and this tube unchanged, otherwise.
+  bool narrowTo(const SupportTube& fresh, double slack);
+
   /// The proved distance between the two nodes when the tube separates them (at least the `needed` it was made
   /// for), else −infinity. Certificates are kept per node.
   double gap(const PatchNode& na, const PatchNode& nb);

@@ -42,6 +42,9 @@ constexpr double kSameEnd = 1e-9;   // Newton ends this close in parameters are 
 constexpr double kFirstRegion = 1.0 / 32;  // the first convexity box tried around a Newton end (patch parameters)
 constexpr int kRegionAttempts = 5;
 constexpr double kSplitBothRatio = 0.5;  // the smaller node's ball at least this fraction of the larger's
+constexpr double kRefusedSplitRatio = 4;  // the same, where the tube refused one side only (splitBothRatio)
+constexpr double kNearBestShare = 0.7;    // a pair bounded above this share of the best is in the best's basin
+constexpr int kRefusedAloneDepth = 3;     // refused nodes this deep are split with the other again
 constexpr double kEscapeAlongNormal = 0.1;  // an escape direction must leave A's touching point at least this steeply
 constexpr double kFinerProof = 1e-14;  // a touching gap above this fraction of the size is proved by a finer search
 
@@ -112,8 +115,8 @@ class PairSearch {
       // intermediate pairs (one node split) being pushed and popped. Only while the children are kept in the
       // trees: building nodes below kCachedDepth costs more than the pops it saves.
       const Node* other = splitA ? top.b : top.a;
-      if (other->ball.radius >= kSplitBothRatio * n->ball.radius && top.a->depth < nurbs::kCachedDepth &&
-          top.b->depth < nurbs::kCachedDepth) {
+      if (other->ball.radius >= splitBothRatio(top, unproved) * n->ball.radius &&
+          top.a->depth < nurbs::kCachedDepth && top.b->depth < nurbs::kCachedDepth) {
         const auto childrenA = a_.forest().children(*top.a, arena_);
         const auto childrenB = b_.forest().children(*top.b, arena_);
         for (const Node* ca : childrenA)
@@ -126,6 +129,18 @@ class PairSearch {
     }
     if (inside_) return Outcome::Crossing;
     return best_.value <= 0.5 * tolerance_ ? Outcome::Touching : Outcome::Proved;
+  }
+
+  /// How much larger than the node split the other must be to be split with it. Where the tube refused one
+  /// side only, at a pair bounded near the best (the best pair's own basin), the other's pieces are proved as it
+  /// is: splitting it would only multiply the pairs and the Newton runs from flat ones (linked rings: −25 %
+  /// instructions), so it is split only when much larger. Not far below the best (a lower minimum may lie there:
+  /// both are split, for the flat pairs Newton starts from), and only near the roots: where the tube cannot
+  /// prove the refused side at all (at a tolerance of 1e-12 the convexity boxes settle the contact), holding the
+  /// other large left the search splitting one side only, past its budget.
+  double splitBothRatio(const OpenPair& top, int unproved) const {
+    if (unproved == 0 || (unproved < 0 ? top.a : top.b)->depth >= kRefusedAloneDepth) return kSplitBothRatio;
+    return top.lower >= kNearBestShare * best_.value ? kRefusedSplitRatio : kSplitBothRatio;
   }
 
   double best() const { return best_.value; }
@@ -235,6 +250,7 @@ class PairSearch {
     if (plane_.forBest - best_.value <= kRefitShare * tolerance_) return;
     plane_ = {};
     ball_.reset();
+    std::optional<nurbs::SupportTube> kept = std::move(tube_);
     tube_.reset();
     plane_.forBest = best_.value;
     const Eigen::Vector3d gap = best_.pB - best_.pA;
@@ -251,7 +267,10 @@ class PairSearch {
                                           b_.patches()[static_cast<std::size_t>(best_.patchB)], best_.x.tail<2>(),
                                           X_AB_, best_.pA, best_.pB};
     ball_ = nurbs::SupportBall::fit(contact);
-    if (!ball_) tube_ = nurbs::SupportTube::fit(contact, best_.value - 0.5 * tolerance_, tolerance_);
+    if (ball_) return;
+    tube_ = nurbs::SupportTube::fit(contact, best_.value - 0.5 * tolerance_, tolerance_);
+    // The same tube (a ring's core circle, fitted again at a lower pair on it) keeps the proofs it has made.
+    if (kept && tube_ && kept->narrowTo(*tube_, kRefitShare * tolerance_)) tube_ = std::move(kept);
   }
 
   /// Does the surface at (s, t) curve away from the plane through it normal to n (on n's side), to first
