@@ -76,7 +76,8 @@ bool nurbsSolids(const PosedModel& a, const PosedModel& b) {
 
 }  // namespace
 
-void polishAcrossPatches(const PosedModel& a, const PosedModel& b, DistanceResult& r, double tolerance) {
+void polishAcrossPatches(const PosedModel& a, const PosedModel& b, DistanceResult& r, double tolerance,
+                         double enough) {
   if (!(r.lowerBound > 0) || !(r.distance > 0)) return;
   if (a.model.type() != ModelType::Nurbs && b.model.type() != ModelType::Nurbs) return;
   // Bounds already within rounding of each other (2e-13 of the NURBS model's size): the polish could not move the
@@ -100,7 +101,8 @@ void polishAcrossPatches(const PosedModel& a, const PosedModel& b, DistanceResul
     r.pointB = pointB;
     r.distance = gap;
     if (gap > 0) r.normal = (pointB - nextA) / gap;
-    if (shrink <= 4 * std::numeric_limits<double>::epsilon() * (1 + pointB.cwiseAbs().maxCoeff())) break;
+    if (shrink <= std::max(enough, 4 * std::numeric_limits<double>::epsilon() * (1 + pointB.cwiseAbs().maxCoeff())))
+      break;
   }
   r.upperBound = std::min(r.upperBound, r.distance);
   settleStatus(r, tolerance);

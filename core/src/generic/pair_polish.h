@@ -15,6 +15,8 @@ void polishSeparation(const PosedModel& a, const PosedModel& b, DistanceResult& 
 
 /// polishSeparation for every pair, two NURBS solids included: the NURBS–NURBS routine's own call, where its best
 /// pair lies on a patch edge (a Newton run clamped there; the local minimum may lie across the seam).
-void polishAcrossPatches(const PosedModel& a, const PosedModel& b, DistanceResult& r, double tolerance);
+/// enough: a step shrinking the gap by less ends the polish (0: only rounding does).
+void polishAcrossPatches(const PosedModel& a, const PosedModel& b, DistanceResult& r, double tolerance,
+                         double enough = 0);
 
 }  // namespace unidist::detail

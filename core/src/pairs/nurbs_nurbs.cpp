@@ -46,6 +46,11 @@ constexpr double kRefusedSplitRatio = 4;  // the same, where the tube refused on
 constexpr double kNearBestShare = 0.7;    // a pair bounded above this share of the best is in the best's basin
 constexpr int kRefusedAloneDepth = 3;     // refused nodes this deep are split with the other again
 constexpr double kEscapeAlongNormal = 0.1;  // an escape direction must leave A's touching point at least this steeply
+// Of the tolerance: a polish step across a seam shrinking the gap by less ends it. The answer is certified
+// before the polish; at a coarse tolerance the search stops at its first Newton end, often on a seam of linked
+// rings, and the alternating projections creep along their nearly constant gap (1e-1: 64 steps, 420 µs; now
+// ~100 µs, 5e-6 off, against 180 µs at 1e-2).
+constexpr double kSeamPolishShare = 1e-4;
 constexpr double kFinerProof = 1e-14;  // a touching gap above this fraction of the size is proved by a finer search
 
 using Node = nurbs::PatchNode;
@@ -730,7 +735,7 @@ DistanceResult nurbsNurbs(const PosedModel& a, const PosedModel& b, const QueryC
   settleStatus(r, ctx.tolerance);
   // Inside both patches the best pair is a stationary point of the distance; on a patch edge the local minimum
   // may lie across the seam, where the local projections follow it.
-  if (search.bestOnPatchEdge()) polishAcrossPatches(a, b, r, ctx.tolerance);
+  if (search.bestOnPatchEdge()) polishAcrossPatches(a, b, r, ctx.tolerance, kSeamPolishShare * ctx.tolerance);
   return r;
 }
 
