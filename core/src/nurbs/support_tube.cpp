@@ -155,7 +155,8 @@ bool SupportTube::narrowTo(const SupportTube& fresh, double slack) {
                     near(circleB_, fresh.circleB_) && fresh.outer_ <= outer_;
   if (!same) return false;
   outer_ = fresh.outer_;
-  outerMemo_ = NodeMemo();
+  outerSide_.memo = NodeMemo();
+  outerSide_.lastNode = nullptr;
   return true;
 }
 
@@ -218,10 +219,12 @@ std::vector<double>& SupportTube::quarticOf(const RationalBezierPatch& net, cons
   return quartic;
 }
 
-bool SupportTube::proved(NodeMemo& memo, ProvedBoxes& boxes, const PatchNode& node, const Circle& circle,
-                         double s, bool inside) {
-  if (covered(boxes, node)) return true;
-  const bool result = memo.get(node, [&] {
+bool SupportTube::proved(Side& side, const PatchNode& node, const Circle& circle, double s, bool inside) {
+  if (&node == side.lastNode) return side.lastResult;
+  ProvedBoxes& boxes = side.boxes;
+  side.lastNode = &node;
+  if ((side.lastResult = covered(boxes, node))) return true;
+  const bool result = side.memo.get(node, [&] {
     // The ball first: the distance to the circle moves by at most the radius over it.
     const double atCentre = distanceToCircle(node.ball.center, circle.centre, circle.axis, R_);
     if (inside ? atCentre + node.ball.radius <= s : atCentre - node.ball.radius >= s) return 1.0;
@@ -252,6 +255,7 @@ bool SupportTube::proved(NodeMemo& memo, ProvedBoxes& boxes, const PatchNode& no
     if (patch >= boxes.size()) boxes.resize(patch + 1);
     boxes[patch].push_back({node.s0, node.s1, node.t0, node.t1});
   }
+  side.lastResult = result;
   return result;
 }
 
@@ -261,10 +265,10 @@ double SupportTube::gap(const PatchNode& na, const PatchNode& nb) {
   const Circle& innerCircle = innerIsA_ ? circleA_ : circleB_;
   const Circle& outerCircle = innerIsA_ ? circleB_ : circleA_;
   // The inner side first: a ring's own core circle proves all of it at its root patches.
-  const bool innerProved = proved(innerMemo_, innerBoxes_, inner, innerCircle, inner_, true);
+  const bool innerProved = proved(innerSide_, inner, innerCircle, inner_, true);
   lastUnproved_ = 0;
   if (!innerProved) return -std::numeric_limits<double>::infinity();
-  if (!proved(outerMemo_, outerBoxes_, outer, outerCircle, outer_, false)) {
+  if (!proved(outerSide_, outer, outerCircle, outer_, false)) {
     lastUnproved_ = innerIsA_ ? 1 : -1;
     return -std::numeric_limits<double>::infinity();
   }

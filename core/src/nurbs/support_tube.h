@@ -54,24 +54,30 @@ class SupportTube {
   };
   using ProvedBoxes = std::vector<std::vector<ProvedBox>>;  // per patch: the search asks ~50 times per node made
   static bool covered(const ProvedBoxes& boxes, const PatchNode& node);
+  /// What one side knows: each node's verdict, the parts proved, and the last node asked (the search visits a
+  /// node's pairs in a row: a ring's 16 root patches against each other's, a node's four children against one).
+  struct Side {
+    NodeMemo memo;
+    ProvedBoxes boxes;
+    const PatchNode* lastNode = nullptr;
+    bool lastResult = false;
+  };
   /// The Bernstein coefficients (degree (4p, 4q), in the scratch) of the tube's quartic over the net,
   /// (|y|² + (R² − s²)W²)² − 4R²(|y|² − z²)W² with y = X − centre·W, z = axis·y: negative inside the tube of
   /// radius s, positive outside. `allowance`: how far a coefficient may be off by rounding.
   std::vector<double>& quarticOf(const RationalBezierPatch& net, const Circle& circle, double s, double& allowance);
   /// Is the node inside (inside = true) the tube of radius s about the circle, or outside it? Proved.
-  bool proved(NodeMemo& memo, ProvedBoxes& boxes, const PatchNode& node, const Circle& circle, double s,
-              bool inside);
+  bool proved(Side& side, const PatchNode& node, const Circle& circle, double s, bool inside);
 
   bool innerIsA_ = true;
   int lastUnproved_ = 0;
   double R_ = 0, inner_ = 0, outer_ = 0;  // core circle radius; the tube radii the two sides are tested against
   Circle circleA_, circleB_;               // the circle in A's and in B's frame
-  NodeMemo innerMemo_, outerMemo_;
+  Side innerSide_, outerSide_;
   struct Scratch {  // the quartic's forms, kept between nodes (one search makes tens of them)
     std::vector<Eigen::Vector3d> y;
     std::vector<double> axial, w, yy, zz, ww, u, rho2, quartic;
   } scratch_;
-  ProvedBoxes innerBoxes_, outerBoxes_;
 };
 
 }  // namespace unidist::nurbs
