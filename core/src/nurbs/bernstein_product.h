@@ -12,6 +12,15 @@
 #include <type_traits>
 #include <vector>
 
+// GCC unrolls the fixed-degree products' loops fully on request; Clang refuses some of them with a warning (an
+// error here), so it is left to its own judgement.
+#if defined(__GNUC__) && !defined(__clang__)
+#define UNIDIST_PRAGMA(text) _Pragma(#text)
+#define UNIDIST_UNROLL(count) UNIDIST_PRAGMA(GCC unroll count)
+#else
+#define UNIDIST_UNROLL(count)
+#endif
+
 namespace unidist::nurbs {
 
 /// Bernstein coefficients of the product of a degree-(n, m) polynomial (coefficients x, u-major) and a
@@ -98,14 +107,14 @@ inline void addScaledProductOf(int n, int m, const T* __restrict x, const T* __r
 template <int N, bool Square, class T>
 inline void addScaledProductOf(const T* __restrict x, const T* __restrict y, double factor, double* __restrict out) {
   constexpr int kCols = 2 * N + 1;
-#pragma GCC unroll 16
+UNIDIST_UNROLL(16)
   for (int r = 0; r < kCols; ++r) {
-#pragma GCC unroll 16
+UNIDIST_UNROLL(16)
     for (int c = 0; c < kCols; ++c) {
       double sum = 0, own = 0;  // own: a square's term with itself
-#pragma GCC unroll 8
+UNIDIST_UNROLL(8)
       for (int i = (r > N ? r - N : 0); i <= (r < N ? r : N); ++i)
-#pragma GCC unroll 8
+UNIDIST_UNROLL(8)
         for (int j = (c > N ? c - N : 0); j <= (c < N ? c : N); ++j) {
           const int a = i * (N + 1) + j, b = (r - i) * (N + 1) + c - j;
           if constexpr (Square) {
@@ -151,3 +160,6 @@ inline void unscaleByBinomials(int n, int m, double* c) {
 }
 
 }  // namespace unidist::nurbs
+
+#undef UNIDIST_UNROLL
+#undef UNIDIST_PRAGMA
