@@ -220,10 +220,16 @@ std::vector<double>& SupportTube::quarticOf(const RationalBezierPatch& net, cons
 }
 
 bool SupportTube::proved(Side& side, const PatchNode& node, const Circle& circle, double s, bool inside) {
-  if (&node == side.lastNode) return side.lastResult;
+  if (&node != side.lastNode) {
+    side.lastResult = verdict(side, node, circle, s, inside);
+    side.lastNode = &node;
+  }
+  return side.lastResult;
+}
+
+bool SupportTube::verdict(Side& side, const PatchNode& node, const Circle& circle, double s, bool inside) {
   ProvedBoxes& boxes = side.boxes;
-  side.lastNode = &node;
-  if ((side.lastResult = covered(boxes, node))) return true;
+  if (covered(boxes, node)) return true;
   const bool result = side.memo.get(node, [&] {
     // The ball first: the distance to the circle moves by at most the radius over it.
     const double atCentre = distanceToCircle(node.ball.center, circle.centre, circle.axis, R_);
@@ -255,7 +261,6 @@ bool SupportTube::proved(Side& side, const PatchNode& node, const Circle& circle
     if (patch >= boxes.size()) boxes.resize(patch + 1);
     boxes[patch].push_back({node.s0, node.s1, node.t0, node.t1});
   }
-  side.lastResult = result;
   return result;
 }
 

@@ -66,8 +66,10 @@ class SupportTube {
   /// (|y|² + (R² − s²)W²)² − 4R²(|y|² − z²)W² with y = X − centre·W, z = axis·y: negative inside the tube of
   /// radius s, positive outside. `allowance`: how far a coefficient may be off by rounding.
   std::vector<double>& quarticOf(const RationalBezierPatch& net, const Circle& circle, double s, double& allowance);
-  /// Is the node inside (inside = true) the tube of radius s about the circle, or outside it? Proved.
+  /// Is the node inside (inside = true) the tube of radius s about the circle, or outside it? Proved. The last
+  /// node asked is answered again at once; others go to verdict().
   bool proved(Side& side, const PatchNode& node, const Circle& circle, double s, bool inside);
+  bool verdict(Side& side, const PatchNode& node, const Circle& circle, double s, bool inside);
 
   bool innerIsA_ = true;
   int lastUnproved_ = 0;
